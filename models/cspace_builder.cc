@@ -1,0 +1,491 @@
+// Exact construction of the configuration space and its atoms (Buckley ch. 2 and §6.1).
+//
+// 1. C-obstacles: for convex robot part R and convex environment part O, the C-obstacle O ⊕ (−R) is the convex
+//    hull of the vertex differences o − r (Lozano-Pérez; Buckley §2.2). C-space parts are taken as given.
+// 2. Faces: for every oriented plane P carrying an obstacle facet or a bounds wall, the boundary of free space on
+//    P is (facets on P with outward normal n) minus (facets on P facing −n) minus (cross-sections of obstacles
+//    whose interior P cuts), clipped to the bounds box. This regularized Boolean is exact (Polygon_set_2, Epeck)
+//    and merges coplanar adjacent facets into maximal regions, which are then split into convex pieces only where
+//    they are not convex (planar_regions.cc).
+// 3. Vertices are the corners of all faces; edges are the face sides split at every vertex lying on them, so a
+//    T-junction (a corner of one face on the side of another) is a vertex of the complex, as in Buckley's hole.
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "models/cspace.h"
+#include "models/internal/exact_kernel.h"
+#include "models/task_error.h"
+#include "models/task_loader.h"
+
+namespace cmt {
+
+using namespace exact;
+
+namespace {
+
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+
+struct ExactObstacle {
+  std::vector<Point3> vertices;
+  std::vector<Plane3> planes;                 // outward: the obstacle lies on the negative side
+  std::vector<std::vector<Point3>> facets;    // facet polygons, one per plane
+  double friction = 0;
+  std::string source;
+};
+
+struct ExactFace {
+  Plane3 plane;                  // oriented: positive side is free space
+  std::vector<Point3> polygon;   // CCW around the plane normal
+  double friction = 0;
+  bool phantom = false;          // lies on a clipping plane that is not a real wall
+};
+
+Point3 to_exact(const Vec3& v) { return Point3(v.x(), v.y(), v.z()); }
+Vec3 to_double(const Point3& p) { return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); }
+
+// Projection of an oriented plane to a coordinate plane: drop the axis where the normal is largest; keep the
+// other two in cyclic order so that counter-clockwise in 2-D is counter-clockwise about +axis in 3-D.
+struct PlaneChart {
+  Plane3 plane;
+  int drop = 2;
+  int u = 0, v = 1;
+
+  explicit PlaneChart(const Plane3& p) : plane(p) {
+    const FT ax = CGAL::abs(p.a()), ay = CGAL::abs(p.b()), az = CGAL::abs(p.c());
+    if (ax >= ay && ax >= az)
+      drop = 0;
+    else if (ay >= az)
+      drop = 1;
+    else
+      drop = 2;
+    u = (drop + 1) % 3;
+    v = (drop + 2) % 3;
+  }
+  static FT coord(const Point3& p, int i) { return i == 0 ? p.x() : (i == 1 ? p.y() : p.z()); }
+  FT coef(int i) const { return i == 0 ? plane.a() : (i == 1 ? plane.b() : plane.c()); }
+  Point2 project(const Point3& p) const { return Point2(coord(p, u), coord(p, v)); }
+  Point3 lift(const Point2& q) const {
+    FT c[3];
+    c[u] = q.x();
+    c[v] = q.y();
+    c[drop] = -(coef(u) * q.x() + coef(v) * q.y() + plane.d()) / coef(drop);
+    return Point3(c[0], c[1], c[2]);
+  }
+  // True when CCW in the chart is CW about the plane normal.
+  bool flips() const { return coef(drop) < 0; }
+};
+
+ExactObstacle make_obstacle(const std::vector<Point3>& points, double friction, std::string source,
+                            const std::string& file) {
+  Polyhedron hull;
+  CGAL::convex_hull_3(points.begin(), points.end(), hull);
+  if (hull.size_of_vertices() < 4 || !hull.is_closed())
+    throw TaskError(file, source, "degenerate C-obstacle: its points do not span a solid");
+  ExactObstacle ob;
+  ob.friction = friction;
+  ob.source = std::move(source);
+  for (auto v = hull.vertices_begin(); v != hull.vertices_end(); ++v) ob.vertices.push_back(v->point());
+  for (auto f = hull.facets_begin(); f != hull.facets_end(); ++f) {
+    auto h = f->halfedge();
+    const Plane3 plane(h->vertex()->point(), h->next()->vertex()->point(), h->next()->next()->vertex()->point());
+    if (std::find(ob.planes.begin(), ob.planes.end(), plane) == ob.planes.end()) ob.planes.push_back(plane);
+  }
+  for (const Plane3& plane : ob.planes) {
+    std::vector<Point3> on;
+    for (const Point3& p : ob.vertices)
+      if (plane.has_on(p)) on.push_back(p);
+    ob.facets.push_back(std::move(on));  // hull order is fixed later in the plane's chart
+  }
+  return ob;
+}
+
+// Closed cross-section of a convex point set's hull with a plane (points, unordered), and whether the plane
+// passes through the hull's interior.
+std::vector<Point3> cross_section(const std::vector<Point3>& vertices, const Plane3& plane, bool* cuts_interior) {
+  std::vector<Point3> pos, neg, out;
+  for (const Point3& p : vertices) {
+    switch (plane.oriented_side(p)) {
+      case CGAL::ON_POSITIVE_SIDE:
+        pos.push_back(p);
+        break;
+      case CGAL::ON_NEGATIVE_SIDE:
+        neg.push_back(p);
+        break;
+      default:
+        out.push_back(p);
+    }
+  }
+  *cuts_interior = !pos.empty() && !neg.empty();
+  for (const Point3& a : pos)
+    for (const Point3& b : neg) {
+      const auto x = CGAL::intersection(plane, Kernel::Segment_3(a, b));
+      if (x)
+        if (const Point3* p = boost::get<Point3>(&*x)) out.push_back(*p);
+    }
+  return out;
+}
+
+std::vector<Point3> box_corners(const AxisBox& b) {
+  std::vector<Point3> c;
+  for (int i = 0; i < 8; ++i)
+    c.emplace_back((i & 1) ? b.max.x() : b.min.x(), (i & 2) ? b.max.y() : b.min.y(), (i & 4) ? b.max.z() : b.min.z());
+  return c;
+}
+
+struct PointLess {
+  bool operator()(const Point3& a, const Point3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
+};
+
+}  // namespace
+
+class CSpaceBuilder {
+ public:
+  explicit CSpaceBuilder(const Task& task) : task_(task) {}
+
+  CSpace build() {
+    make_obstacles();
+    make_clip_box();
+    make_faces();
+    make_complex();
+    return std::move(out_);
+  }
+
+ private:
+  void make_obstacles() {
+    const std::string& file = task_.source_file;
+    if (task_.physical()) {
+      for (std::size_t i = 0; i < task_.robot.size(); ++i)
+        for (std::size_t j = 0; j < task_.environment.size(); ++j) {
+          std::vector<Point3> diff;
+          for (const Vec3& o : task_.environment[j].vertices)
+            for (const Vec3& r : task_.robot[i].vertices) diff.push_back(to_exact(o) + (CGAL::ORIGIN - to_exact(r)));
+          obstacles_.push_back(make_obstacle(diff, task_.environment[j].friction,
+                                             task_.robot[i].key + " x " + task_.environment[j].key, file));
+        }
+    } else {
+      for (const ConvexPart& part : task_.cspace) {
+        std::vector<Point3> pts;
+        for (const Vec3& v : part.vertices) pts.push_back(to_exact(v));
+        obstacles_.push_back(make_obstacle(pts, part.friction, part.key, file));
+      }
+    }
+    for (const ExactObstacle& ob : obstacles_) {
+      ConvexObstacle c;
+      c.friction = ob.friction;
+      c.source = ob.source;
+      for (const Point3& p : ob.vertices) c.vertices.push_back(to_double(p));
+      for (const Plane3& pl : ob.planes) {
+        const Vector3 n = pl.orthogonal_vector();
+        const Vec3 nd(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
+        const double len = nd.norm();
+        c.normals.push_back(nd / len);
+        c.offsets.push_back(-CGAL::to_double(pl.d()) / len);
+      }
+      out_.obstacles_.push_back(std::move(c));
+    }
+  }
+
+  // The clip box: the task bounds where given; otherwise a box strictly containing every obstacle whose walls
+  // are phantoms (no atoms). Planar tasks always have phantom walls at |y| = kPlanarClipHalfDepth.
+  void make_clip_box() {
+    out_.planar_ = task_.dimension == 2;
+    if (task_.bounds) {
+      clip_ = *task_.bounds;
+      for (int s = 0; s < 6; ++s) wall_real_[s] = true;
+      out_.bounds_ = *task_.bounds;
+      out_.has_bounds_ = true;
+    } else {
+      Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+      for (const ConvexObstacle& ob : out_.obstacles_)
+        for (const Vec3& v : ob.vertices) {
+          lo = lo.cwiseMin(v);
+          hi = hi.cwiseMax(v);
+        }
+      clip_.min = lo - Vec3::Constant(1.0);
+      clip_.max = hi + Vec3::Constant(1.0);
+      for (int s = 0; s < 6; ++s) wall_real_[s] = false;
+    }
+    if (out_.planar_) {
+      clip_.min.y() = -kPlanarClipHalfDepth;
+      clip_.max.y() = kPlanarClipHalfDepth;
+      wall_real_[2] = wall_real_[3] = false;  // sides 2, 3 are the y walls
+    }
+    // Walls: side 2k is min of axis k (inward normal +e_k), side 2k+1 is max (inward normal −e_k).
+    for (int s = 0; s < 6; ++s) {
+      const int axis = s / 2;
+      FT n[3] = {0, 0, 0};
+      n[axis] = (s % 2 == 0) ? 1 : -1;
+      const double coord = (s % 2 == 0) ? clip_.min[axis] : clip_.max[axis];
+      // n . x + d = 0 with the plane at x_axis = coord.
+      walls_[s] = Plane3(n[0], n[1], n[2], -n[axis] * FT(coord));
+    }
+    clip_corners_ = box_corners(clip_);
+  }
+
+  void add_plane(const Plane3& p) {
+    if (std::find(planes_.begin(), planes_.end(), p) == planes_.end()) planes_.push_back(p);
+  }
+
+  void make_faces() {
+    for (const ExactObstacle& ob : obstacles_)
+      for (const Plane3& p : ob.planes) add_plane(p);
+    for (const Plane3& w : walls_) add_plane(w);
+
+    for (const Plane3& plane : planes_) {
+      // A plane facing out of the clip box at one of its walls has no free space on its positive side.
+      bool faces_out = false;
+      for (const Plane3& w : walls_)
+        if (plane == w.opposite()) faces_out = true;
+      if (faces_out) continue;
+      const PlaneChart chart(plane);
+      const Plane3 opposite = plane.opposite();
+
+      // Below: facets with outward normal n, grouped by friction; the bounds wall uses the task's friction.
+      std::map<double, std::vector<Polygon2Points>, std::greater<>> below_by_friction;
+      std::vector<Polygon2Points> above;
+      for (const ExactObstacle& ob : obstacles_) {
+        for (std::size_t k = 0; k < ob.planes.size(); ++k) {
+          if (ob.planes[k] == plane) below_by_friction[ob.friction].push_back(project(chart, ob.facets[k]));
+          if (ob.planes[k] == opposite) above.push_back(project(chart, ob.facets[k]));
+        }
+        bool cuts = false;
+        const std::vector<Point3> section = cross_section(ob.vertices, plane, &cuts);
+        if (cuts) above.push_back(project(chart, section));
+      }
+      bool phantom = false;
+      for (int s = 0; s < 6; ++s)
+        if (plane == walls_[s]) {
+          bool cuts = false;
+          below_by_friction[task_.friction].push_back(project(chart, cross_section(clip_corners_, plane, &cuts)));
+          phantom = !wall_real_[s];
+        }
+      if (below_by_friction.empty()) continue;
+      bool cuts_clip = false;
+      const Polygon2Points clip = project(chart, cross_section(clip_corners_, plane, &cuts_clip));
+      bool on_wall = false;
+      for (const Plane3& w : walls_) on_wall = on_wall || plane == w;
+      if (!cuts_clip && !on_wall) continue;  // the plane misses the clip box's interior
+
+      // Larger friction wins where coplanar facets of different friction overlap (documented in docs/).
+      std::vector<Polygon2Points> taken = above;
+      for (const auto& [friction, below] : below_by_friction) {
+        for (const RegionWithHoles& region : planar_region(below, taken, clip, true))
+          for (const Polygon2Points& piece : convex_pieces(region)) {
+            ExactFace face;
+            face.plane = plane;
+            face.friction = friction;
+            face.phantom = phantom;
+            for (const Point2& q : piece) face.polygon.push_back(chart.lift(q));
+            if (chart.flips()) std::reverse(face.polygon.begin(), face.polygon.end());
+            faces_.push_back(std::move(face));
+          }
+        taken.insert(taken.end(), below.begin(), below.end());
+      }
+    }
+  }
+
+  static Polygon2Points project(const PlaneChart& chart, const std::vector<Point3>& pts) {
+    Polygon2Points out;
+    for (const Point3& p : pts) out.push_back(chart.project(p));
+    return out;
+  }
+
+  bool on_phantom_wall(const Point3& p) const {
+    for (int s = 0; s < 6; ++s)
+      if (!wall_real_[s] && walls_[s].has_on(p)) return true;
+    return false;
+  }
+  bool on_same_phantom_wall(const Point3& a, const Point3& b) const {
+    for (int s = 0; s < 6; ++s)
+      if (!wall_real_[s] && walls_[s].has_on(a) && walls_[s].has_on(b)) return true;
+    return false;
+  }
+
+  void make_complex() {
+    // Vertices: all corners (exactly deduplicated).
+    std::map<Point3, int, PointLess> vertex_index;
+    std::vector<Point3> points;
+    for (const ExactFace& f : faces_)
+      for (const Point3& p : f.polygon)
+        if (vertex_index.emplace(p, static_cast<int>(points.size())).second) points.push_back(p);
+    // Edges: face sides split at every vertex on them.
+    std::map<std::pair<int, int>, std::vector<int>> edge_faces;  // by (smaller, larger) point index
+    std::vector<std::vector<std::pair<int, int>>> face_edges(faces_.size());
+    std::vector<std::set<int>> face_points(faces_.size());
+    for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+      const auto& poly = faces_[fi].polygon;
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Point3& a = poly[k];
+        const Point3& b = poly[(k + 1) % poly.size()];
+        std::vector<int> inner;
+        for (std::size_t pi = 0; pi < points.size(); ++pi) {
+          const Point3& p = points[pi];
+          if (p != a && p != b && CGAL::collinear(a, p, b) && CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
+            inner.push_back(static_cast<int>(pi));
+        }
+        std::sort(inner.begin(), inner.end(), [&](int x, int y) {
+          return CGAL::has_smaller_distance_to_point(a, points[x], points[y]);
+        });
+        std::vector<int> on{vertex_index.at(a)};
+        on.insert(on.end(), inner.begin(), inner.end());
+        on.push_back(vertex_index.at(b));
+        for (std::size_t s = 0; s + 1 < on.size(); ++s) {
+          const auto key = std::minmax(on[s], on[s + 1]);
+          auto& list = edge_faces[{key.first, key.second}];
+          if (list.empty() || list.back() != static_cast<int>(fi)) list.push_back(static_cast<int>(fi));
+          face_edges[fi].push_back({key.first, key.second});
+          face_points[fi].insert(on[s]);
+        }
+      }
+    }
+
+    // Keep the real atoms, in a stable order: faces by (normal, offset, first corner), vertices and edges by
+    // coordinates.
+    std::vector<int> face_order;
+    for (std::size_t i = 0; i < faces_.size(); ++i)
+      if (!faces_[i].phantom) face_order.push_back(static_cast<int>(i));
+    auto face_key = [&](int i) {
+      const Vector3 n = faces_[i].plane.orthogonal_vector();
+      const double len = std::sqrt(CGAL::to_double(n.squared_length()));
+      std::vector<double> key{-CGAL::to_double(n.x()) / len, -CGAL::to_double(n.y()) / len,
+                              -CGAL::to_double(n.z()) / len, CGAL::to_double(faces_[i].plane.d()) / len};
+      Point3 lowest = faces_[i].polygon[0];
+      for (const Point3& p : faces_[i].polygon)
+        if (PointLess()(p, lowest)) lowest = p;
+      const Vec3 l = to_double(lowest);
+      key.insert(key.end(), {l.x(), l.y(), l.z()});
+      return key;
+    };
+    std::sort(face_order.begin(), face_order.end(), [&](int a, int b) { return face_key(a) < face_key(b); });
+
+    std::vector<int> vertex_order;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!on_phantom_wall(points[i])) vertex_order.push_back(static_cast<int>(i));
+    std::sort(vertex_order.begin(), vertex_order.end(), [&](int a, int b) { return PointLess()(points[a], points[b]); });
+
+    std::vector<std::pair<int, int>> edge_order;
+    for (const auto& [key, fl] : edge_faces) {
+      bool real_face = false;
+      for (int f : fl) real_face = real_face || !faces_[f].phantom;
+      if (real_face && !on_same_phantom_wall(points[key.first], points[key.second])) edge_order.push_back(key);
+    }
+    std::sort(edge_order.begin(), edge_order.end(), [&](const auto& a, const auto& b) {
+      const Point3 &a0 = points[a.first], &a1 = points[a.second], &b0 = points[b.first], &b1 = points[b.second];
+      const Point3& alo = PointLess()(a0, a1) ? a0 : a1;
+      const Point3& ahi = PointLess()(a0, a1) ? a1 : a0;
+      const Point3& blo = PointLess()(b0, b1) ? b0 : b1;
+      const Point3& bhi = PointLess()(b0, b1) ? b1 : b0;
+      if (alo != blo) return PointLess()(alo, blo);
+      return PointLess()(ahi, bhi);
+    });
+
+    const int nf = static_cast<int>(face_order.size());
+    const int ne = static_cast<int>(edge_order.size());
+    std::vector<int> face_id(faces_.size(), -1), vertex_id(points.size(), -1);
+    for (int i = 0; i < nf; ++i) face_id[face_order[i]] = i;
+    for (int i = 0; i < static_cast<int>(vertex_order.size()); ++i) vertex_id[vertex_order[i]] = nf + ne + i;
+    std::map<std::pair<int, int>, int> edge_id;
+    for (int i = 0; i < ne; ++i) edge_id[edge_order[i]] = nf + i;
+
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int i = 0; i < nf; ++i) {
+      const ExactFace& ef = faces_[face_order[i]];
+      Face f;
+      f.id = i;
+      const Vector3 n = ef.plane.orthogonal_vector();
+      const Vec3 nd(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
+      const double len = nd.norm();
+      f.normal = nd / len;
+      f.offset = -CGAL::to_double(ef.plane.d()) / len;
+      f.friction = ef.friction;
+      for (const Point3& p : ef.polygon) {
+        f.polygon.push_back(to_double(p));
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], f.polygon.back()[k]);
+          hi[k] = std::max(hi[k], f.polygon.back()[k]);
+        }
+      }
+      for (const auto& key : face_edges[face_order[i]])
+        if (auto it = edge_id.find(key); it != edge_id.end()) f.edges.push_back(it->second);
+      for (int p : face_points[face_order[i]])
+        if (vertex_id[p] >= 0) f.vertices.push_back(vertex_id[p]);
+      std::sort(f.edges.begin(), f.edges.end());
+      std::sort(f.vertices.begin(), f.vertices.end());
+      out_.faces_.push_back(std::move(f));
+    }
+    for (int i = 0; i < ne; ++i) {
+      const auto [pa, pb] = edge_order[i];
+      Edge e;
+      e.id = nf + i;
+      const bool swap = !PointLess()(points[pa], points[pb]);
+      const int a = swap ? pb : pa, b = swap ? pa : pb;
+      e.a = to_double(points[a]);
+      e.b = to_double(points[b]);
+      e.vertex_a = vertex_id[a];
+      e.vertex_b = vertex_id[b];
+      for (int f : edge_faces.at(edge_order[i]))
+        if (face_id[f] >= 0) e.faces.push_back(face_id[f]);
+      std::sort(e.faces.begin(), e.faces.end());
+      e.shape = classify_edge(edge_faces.at(edge_order[i]), points[a], points[b]);
+      out_.edges_.push_back(std::move(e));
+    }
+    for (std::size_t i = 0; i < vertex_order.size(); ++i) {
+      Vertex v;
+      v.id = nf + ne + static_cast<int>(i);
+      v.point = to_double(points[vertex_order[i]]);
+      out_.vertices_.push_back(std::move(v));
+    }
+    for (const Face& f : out_.faces_)
+      for (int v : f.vertices) out_.vertices_[v - nf - ne].faces.push_back(f.id);
+    for (const Edge& e : out_.edges_)
+      for (int v : {e.vertex_a, e.vertex_b})
+        if (v >= 0) out_.vertices_[v - nf - ne].edges.push_back(e.id);
+    double diag2 = 0;
+    for (int k = 0; k < 3; ++k) diag2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    out_.scale_ = nf > 0 ? std::sqrt(diag2) : 1.0;
+    if (nf == 0)
+      throw TaskError(task_.source_file, task_.bounds ? "bounds" : "",
+                      "the free space is empty: the obstacles cover the whole workspace");
+  }
+
+  // Buckley's convex/concave edges, decided exactly: face 1 lies on the free side of face 2's plane ⇒ concave.
+  EdgeShape classify_edge(const std::vector<int>& fl, const Point3& a, const Point3& b) const {
+    if (fl.size() != 2) return EdgeShape::kNonManifold;
+    const ExactFace& f1 = faces_[fl[0]];
+    const ExactFace& f2 = faces_[fl[1]];
+    if (f1.plane == f2.plane) return EdgeShape::kFlat;
+    if (f1.plane == f2.plane.opposite()) return EdgeShape::kNonManifold;
+    for (const Point3& p : f1.polygon) {
+      if (CGAL::collinear(a, b, p)) continue;
+      switch (f2.plane.oriented_side(p)) {
+        case CGAL::ON_POSITIVE_SIDE:
+          return EdgeShape::kConcave;
+        case CGAL::ON_NEGATIVE_SIDE:
+          return EdgeShape::kConvex;
+        default:
+          break;
+      }
+    }
+    return EdgeShape::kFlat;
+  }
+
+  const Task& task_;
+  std::vector<ExactObstacle> obstacles_;
+  AxisBox clip_;
+  bool wall_real_[6] = {false, false, false, false, false, false};
+  Plane3 walls_[6];
+  std::vector<Point3> clip_corners_;
+  std::vector<Plane3> planes_;
+  std::vector<ExactFace> faces_;
+  CSpace out_;
+};
+
+CSpace CSpace::build(const Task& task) { return CSpaceBuilder(task).build(); }
+
+}  // namespace cmt

@@ -1,0 +1,29 @@
+#include "models/polygon_distance.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cmt {
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+double distance_to_convex_polygon(const Vec3& p, const std::vector<Vec3>& polygon, const Vec3& normal) {
+  const std::size_t n = polygon.size();
+  bool inside = n >= 3;
+  for (std::size_t i = 0; i < n && inside; ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % n];
+    inside = normal.dot((b - a).cross(p - a)) >= 0;
+  }
+  if (inside) return std::abs(normal.dot(p - polygon[0]));
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) best = std::min(best, distance_to_segment(p, polygon[i], polygon[(i + 1) % n]));
+  return best;
+}
+
+}  // namespace cmt

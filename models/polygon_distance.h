@@ -1,0 +1,12 @@
+// Euclidean distances to segments and convex planar polygons in 3-D (floating point).
+#pragma once
+
+#include "models/task.h"
+
+namespace cmt {
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b);
+// `polygon` is convex and planar, counter-clockwise about the unit `normal`.
+double distance_to_convex_polygon(const Vec3& p, const std::vector<Vec3>& polygon, const Vec3& normal);
+
+}  // namespace cmt

@@ -1,0 +1,94 @@
+// A loaded task: geometry, error bounds, start/goal regions, motions and strategies (contracts.md "Task files").
+// Immutable once loaded; every length is in the task's own units.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cmt {
+
+using Vec3 = Eigen::Vector3d;
+
+enum class LengthUnit { kInch, kMillimeter, kMeter };
+
+// Metres per task length unit (MJCF scenes are written in metres).
+double meters_per_unit(LengthUnit unit);
+const char* unit_name(LengthUnit unit);
+
+// Buckley §2.1 error bounds (L640-652). Lengths in task units, angles in radians.
+struct Uncertainty {
+  double eps_s = 0;    // position-sensing error: radius of the sensing ball
+  double eps_p = 0;    // positioning error in free space
+  double theta_v = 0;  // half-angle between commanded and actual velocity, [0, pi/2)
+  double theta_f = 0;  // force-direction sensing error
+  double step = 0;     // spring interpolation step (defaults to eps_p)
+};
+
+struct AxisBox {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+
+// A convex part: a box or the convex hull of points. `vertices` always holds the points whose hull is the part
+// (the 8 corners for a box). `key` is the YAML key path it was read from, for messages.
+struct ConvexPart {
+  enum class Shape { kBox, kConvex };
+  Shape shape = Shape::kBox;
+  AxisBox box;                 // valid for kBox
+  std::vector<Vec3> vertices;  // hull points (box corners for kBox)
+  double friction = 0;         // Coulomb coefficient (per-part override or the task default)
+  std::string key;
+};
+
+// A start or goal region in configuration space (contracts.md): a point, a segment, or a convex planar polygon.
+struct Region {
+  enum class Kind { kPoint, kSegment, kPolygon };
+  Kind kind = Kind::kPoint;
+  std::vector<Vec3> points;
+  std::string key;
+};
+
+// Buckley §3.2-3.3: the generalized damper (commanded velocity direction, unit length after loading) and the
+// generalized spring (commanded position in configuration space).
+struct Motion {
+  enum class Kind { kDamper, kSpring };
+  std::string name;
+  Kind kind = Kind::kDamper;
+  Vec3 target = Vec3::Zero();  // damper: unit velocity direction; spring: commanded position
+};
+
+// A decision-free sequence of motions (contracts.md). Conditional strategies extend this later (Buckley §4.2).
+struct Strategy {
+  std::string name;
+  std::vector<std::string> motions;
+};
+
+struct Task {
+  std::string name;
+  std::string description;
+  std::string source_file;  // path the task was loaded from, for messages
+  int dimension = 3;        // 2: planar task, [x, z] in the file, extruded along y
+  LengthUnit units = LengthUnit::kMeter;
+  double friction = 0;
+  Uncertainty uncertainty;
+
+  // Geometry form (a): physical parts; the robot translates and its frame origin is the reference point.
+  std::vector<ConvexPart> robot;
+  std::vector<ConvexPart> environment;
+  // Geometry form (b): configuration-space obstacles directly (the robot is a point).
+  std::vector<ConvexPart> cspace;
+  bool physical() const { return !robot.empty(); }
+
+  std::optional<AxisBox> bounds;
+  Region start;
+  std::vector<Region> goal;
+  std::vector<Motion> motions;
+  std::vector<Strategy> strategies;
+
+  const Motion* find_motion(const std::string& name) const;
+  const Strategy* find_strategy(const std::string& name) const;
+};
+
+}  // namespace cmt

@@ -1,0 +1,381 @@
+#include "models/task_loader.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "models/task_error.h"
+
+namespace cmt {
+namespace {
+
+// Relative tolerance for "the polygon's points lie in one plane": distance to the best-fit plane over the
+// polygon's diameter. Looser than the contact tolerance because hand-written decimals are rounded.
+constexpr double kPolygonPlanarityTolerance = 1e-9;
+
+// A YAML node together with its key path, so that every message can say where the problem is.
+class Node {
+ public:
+  Node(YAML::Node node, std::string path, const std::string* file) : node_(node), path_(std::move(path)), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& reason) const { throw TaskError(*file_, path_, reason); }
+  const std::string& path() const { return path_; }
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  const YAML::Node& raw() const { return node_; }
+
+  // Map access with the set of allowed keys; unknown and duplicated keys are errors.
+  void require_map(const std::set<std::string>& allowed) const {
+    if (!node_.IsMap()) fail("expected a mapping");
+    std::set<std::string> seen;
+    for (const auto& kv : node_) {
+      if (!kv.first.IsScalar()) fail("keys must be plain names");
+      const std::string key = kv.first.as<std::string>();
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        Node(kv.second, child_path(key), file_).fail("unknown key (allowed here: " + list + ")");
+      }
+      if (!seen.insert(key).second) Node(kv.second, child_path(key), file_).fail("duplicated key");
+    }
+  }
+  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+  Node at(const std::string& key) const {
+    if (!has(key)) Node(YAML::Node(), child_path(key), file_).fail("missing required key");
+    return Node(node_[key], child_path(key), file_);
+  }
+  Node item(std::size_t i) const { return Node(node_[i], path_ + "[" + std::to_string(i) + "]", file_); }
+  std::size_t size() const { return node_.size(); }
+
+  double number() const {
+    if (!node_.IsScalar()) fail("expected a number");
+    double v = 0;
+    try {
+      v = node_.as<double>();
+    } catch (const YAML::Exception&) {
+      fail("expected a number, got '" + node_.Scalar() + "'");
+    }
+    if (!std::isfinite(v)) fail("expected a finite number");
+    return v;
+  }
+  std::string string() const {
+    if (!node_.IsScalar()) fail("expected a string");
+    return node_.as<std::string>();
+  }
+  Node sequence() const {
+    if (!node_.IsSequence()) fail("expected a list");
+    return *this;
+  }
+  std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+  const std::string* file_;
+};
+
+class Parser {
+ public:
+  explicit Parser(std::string file_label) : file_(std::move(file_label)) {}
+
+  Task parse(const YAML::Node& root_node) {
+    Node root(root_node, "", &file_);
+    if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
+    root.require_map({"name", "description", "units", "friction", "uncertainty", "dimension", "robot", "environment",
+                      "cspace", "bounds", "start", "goal", "motions", "strategies"});
+    Task task;
+    task.source_file = file_;
+    task.name = root.at("name").string();
+    if (!std::regex_match(task.name, std::regex("[a-z0-9_-]+")))
+      root.at("name").fail("must match [a-z0-9_-]+, got '" + task.name + "'");
+    if (root.has("description")) task.description = root.at("description").string();
+    if (root.has("dimension")) {
+      const double d = root.at("dimension").number();
+      if (d != 2 && d != 3) root.at("dimension").fail("must be 2 or 3");
+      task.dimension = static_cast<int>(d);
+    }
+    dimension_ = task.dimension;
+    if (root.has("units")) {
+      const std::string u = root.at("units").string();
+      if (u == "in")
+        task.units = LengthUnit::kInch;
+      else if (u == "mm")
+        task.units = LengthUnit::kMillimeter;
+      else if (u == "m")
+        task.units = LengthUnit::kMeter;
+      else
+        root.at("units").fail("must be one of in, mm, m; got '" + u + "'");
+    }
+    if (root.has("friction")) task.friction = nonnegative(root.at("friction"), "friction coefficient");
+    task.uncertainty = parse_uncertainty(root.at("uncertainty"));
+
+    const bool physical = root.has("robot") || root.has("environment");
+    if (physical && root.has("cspace"))
+      root.at("cspace").fail("give either robot + environment (physical parts) or cspace, not both");
+    if (physical) {
+      task.robot = parse_parts(root.at("robot"), task.friction, /*robot=*/true);
+      if (task.robot.empty()) root.at("robot").fail("the robot needs at least one part");
+      task.environment = parse_parts(root.at("environment"), task.friction, /*robot=*/false);
+    } else if (root.has("cspace") || root.raw()["cspace"].IsDefined()) {
+      if (root.has("cspace")) task.cspace = parse_parts(root.at("cspace"), task.friction, /*robot=*/false);
+    } else {
+      root.fail("missing geometry: give robot + environment (physical parts) or cspace (C-space obstacles)");
+    }
+    if (root.has("bounds")) task.bounds = parse_box(root.at("bounds"), {"min", "max"});
+    if (task.cspace.empty() && task.environment.empty() && !task.bounds)
+      root.fail("no obstacles and no bounds: the configuration space has no contact surface");
+
+    task.start = parse_region(root.at("start"));
+    const Node goal = root.at("goal");
+    if (goal.is_sequence()) {
+      if (goal.size() == 0) goal.fail("the goal list is empty");
+      for (std::size_t i = 0; i < goal.size(); ++i) task.goal.push_back(parse_region(goal.item(i)));
+    } else {
+      task.goal.push_back(parse_region(goal));
+    }
+    if (root.has("motions")) parse_motions(root.at("motions"), task);
+    if (root.has("strategies")) parse_strategies(root.at("strategies"), task);
+    return task;
+  }
+
+ private:
+  double nonnegative(const Node& n, const std::string& what) const {
+    const double v = n.number();
+    if (v < 0) n.fail(what + " must be >= 0, got " + format(v));
+    return v;
+  }
+  static std::string format(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  Uncertainty parse_uncertainty(const Node& n) const {
+    n.require_map({"eps_s", "eps_p", "theta_v", "theta_f", "step"});
+    Uncertainty u;
+    u.eps_s = nonnegative(n.at("eps_s"), "the position-sensing error bound");
+    u.eps_p = nonnegative(n.at("eps_p"), "the positioning error bound");
+    u.theta_v = nonnegative(n.at("theta_v"), "the velocity error angle");
+    if (u.theta_v >= std::numbers::pi / 2)
+      n.at("theta_v").fail("must be < pi/2 (1.5708) radians, got " + format(u.theta_v));
+    u.theta_f = nonnegative(n.at("theta_f"), "the force-sensing error angle");
+    if (u.theta_f >= std::numbers::pi) n.at("theta_f").fail("must be < pi radians, got " + format(u.theta_f));
+    u.step = u.eps_p;
+    if (n.has("step")) {
+      u.step = n.at("step").number();
+      if (u.step <= 0) n.at("step").fail("the spring interpolation step must be > 0, got " + format(u.step));
+    }
+    return u;
+  }
+
+  // A vector in the task's dimension; planar [x, z] is lifted to (x, planar_y, z).
+  Vec3 parse_vector(const Node& n, double planar_y = 0) const {
+    if (!n.is_sequence()) n.fail("expected a list of " + std::to_string(dimension_) + " numbers");
+    if (static_cast<int>(n.size()) != dimension_)
+      n.fail("expected " + std::to_string(dimension_) + " numbers, got " + std::to_string(n.size()));
+    if (dimension_ == 2) return Vec3(n.item(0).number(), planar_y, n.item(1).number());
+    return Vec3(n.item(0).number(), n.item(1).number(), n.item(2).number());
+  }
+
+  AxisBox parse_box(const Node& n, const std::set<std::string>& allowed, double planar_half_depth = 0) const {
+    n.require_map(allowed);
+    AxisBox b;
+    b.min = parse_vector(n.at("min"), -planar_half_depth);
+    b.max = parse_vector(n.at("max"), planar_half_depth);
+    if (dimension_ == 2 && planar_half_depth == 0) {  // bounds of a planar task: the clip slab
+      b.min.y() = -kPlanarClipHalfDepth;
+      b.max.y() = kPlanarClipHalfDepth;
+    }
+    static const char* axis[] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i)
+      if (!(b.min[i] < b.max[i]))
+        n.fail(std::string("degenerate box: min ") + axis[i] + " = " + format(b.min[i]) + " must be < max " +
+               axis[i] + " = " + format(b.max[i]));
+    return b;
+  }
+
+  std::vector<ConvexPart> parse_parts(const Node& list_node, double default_friction, bool robot) const {
+    const Node list = list_node.sequence();
+    std::vector<ConvexPart> parts;
+    const double half_depth = robot ? kPlanarRobotHalfDepth : kPlanarPartHalfDepth;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Node item = list.item(i);
+      item.require_map({"box", "convex"});
+      if (item.size() != 1) item.fail("a part is exactly one of box or convex");
+      ConvexPart part;
+      part.friction = default_friction;
+      const bool is_box = item.has("box");
+      const Node body = item.at(is_box ? "box" : "convex");
+      part.key = body.path();
+      std::set<std::string> allowed = is_box ? std::set<std::string>{"min", "max"} : std::set<std::string>{"vertices"};
+      if (!robot) allowed.insert("friction");
+      if (is_box) {
+        part.shape = ConvexPart::Shape::kBox;
+        part.box = parse_box(body, allowed, half_depth);
+        for (int c = 0; c < 8; ++c)
+          part.vertices.emplace_back((c & 1) ? part.box.max.x() : part.box.min.x(),
+                                     (c & 2) ? part.box.max.y() : part.box.min.y(),
+                                     (c & 4) ? part.box.max.z() : part.box.min.z());
+      } else {
+        body.require_map(allowed);
+        part.shape = ConvexPart::Shape::kConvex;
+        const Node verts = body.at("vertices").sequence();
+        for (std::size_t k = 0; k < verts.size(); ++k) {
+          if (dimension_ == 2) {
+            part.vertices.push_back(parse_vector(verts.item(k), -half_depth));
+            part.vertices.push_back(parse_vector(verts.item(k), half_depth));
+          } else {
+            part.vertices.push_back(parse_vector(verts.item(k)));
+          }
+        }
+        check_solid(body.at("vertices"), part.vertices);
+      }
+      if (!robot && body.has("friction")) part.friction = nonnegative(body.at("friction"), "friction coefficient");
+      parts.push_back(std::move(part));
+    }
+    return parts;
+  }
+
+  // A convex part needs 4 points that are not coplanar (a solid hull). The test is relative to the part size.
+  void check_solid(const Node& n, const std::vector<Vec3>& pts) const {
+    if (pts.size() < 4) n.fail("a convex part needs at least 4 non-coplanar points, got " + std::to_string(pts.size()));
+    double diameter = 0;
+    for (const Vec3& p : pts)
+      for (const Vec3& q : pts) diameter = std::max(diameter, (p - q).norm());
+    if (diameter <= 0) n.fail("all points coincide");
+    // Largest tetrahedron volume against diameter^3: zero for coplanar sets.
+    const Vec3& a = pts[0];
+    double best = 0;
+    for (std::size_t i = 1; i < pts.size(); ++i)
+      for (std::size_t j = i + 1; j < pts.size(); ++j)
+        for (std::size_t k = j + 1; k < pts.size(); ++k)
+          best = std::max(best, std::abs((pts[i] - a).cross(pts[j] - a).dot(pts[k] - a)));
+    if (best <= 1e-12 * diameter * diameter * diameter)
+      n.fail("a convex part needs at least 4 non-coplanar points; these are coplanar (a flat hull has no volume)");
+  }
+
+  Region parse_region(const Node& n) const {
+    n.require_map({"point", "segment", "polygon"});
+    if (n.size() != 1) n.fail("a region is exactly one of point, segment, polygon");
+    Region r;
+    r.key = n.path();
+    if (n.has("point")) {
+      r.kind = Region::Kind::kPoint;
+      r.points.push_back(parse_vector(n.at("point")));
+      return r;
+    }
+    const bool segment = n.has("segment");
+    const Node pts = n.at(segment ? "segment" : "polygon").sequence();
+    for (std::size_t i = 0; i < pts.size(); ++i) r.points.push_back(parse_vector(pts.item(i)));
+    if (segment) {
+      r.kind = Region::Kind::kSegment;
+      if (r.points.size() != 2) pts.fail("a segment has exactly 2 points, got " + std::to_string(r.points.size()));
+      if ((r.points[0] - r.points[1]).norm() == 0) pts.fail("degenerate segment: both ends coincide");
+      return r;
+    }
+    r.kind = Region::Kind::kPolygon;
+    if (r.points.size() < 3) pts.fail("a polygon needs at least 3 points, got " + std::to_string(r.points.size()));
+    check_convex_planar(pts, r.points);
+    return r;
+  }
+
+  void check_convex_planar(const Node& n, const std::vector<Vec3>& p) const {
+    // Newell normal; planarity and convexity relative to the polygon's size.
+    Vec3 normal = Vec3::Zero();
+    const std::size_t k = p.size();
+    for (std::size_t i = 0; i < k; ++i) normal += p[i].cross(p[(i + 1) % k]);
+    double diameter = 0;
+    for (const Vec3& a : p)
+      for (const Vec3& b : p) diameter = std::max(diameter, (a - b).norm());
+    if (normal.norm() <= 1e-12 * diameter * diameter) n.fail("degenerate polygon: zero area");
+    normal.normalize();
+    for (const Vec3& q : p)
+      if (std::abs(normal.dot(q - p[0])) > kPolygonPlanarityTolerance * diameter)
+        n.fail("the polygon's points do not lie in one plane");
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vec3 turn = (p[(i + 1) % k] - p[i]).cross(p[(i + 2) % k] - p[(i + 1) % k]);
+      if (normal.dot(turn) < -1e-12 * diameter * diameter)
+        n.fail("the polygon is not convex (or its points are not in boundary order)");
+    }
+  }
+
+  void parse_motions(const Node& n, Task& task) const {
+    if (!n.is_map()) n.fail("expected a mapping of motion names");
+    std::set<std::string> names;
+    for (const auto& kv : n.raw()) {
+      const std::string name = kv.first.as<std::string>();
+      const Node m(kv.second, n.child_path(name), &file_);
+      if (!names.insert(name).second) m.fail("duplicated motion name");
+      m.require_map({"spring", "damper"});
+      if (m.size() != 1) m.fail("a motion is exactly one of spring, damper");
+      Motion motion;
+      motion.name = name;
+      if (m.has("spring")) {
+        motion.kind = Motion::Kind::kSpring;
+        motion.target = parse_vector(m.at("spring"));
+      } else {
+        motion.kind = Motion::Kind::kDamper;
+        motion.target = parse_vector(m.at("damper"));
+        if (motion.target.norm() == 0) m.at("damper").fail("the commanded velocity direction is the zero vector");
+        motion.target.normalize();
+      }
+      task.motions.push_back(motion);
+    }
+  }
+
+  void parse_strategies(const Node& n, Task& task) const {
+    if (!n.is_map()) n.fail("expected a mapping of strategy names");
+    std::set<std::string> names;
+    for (const auto& kv : n.raw()) {
+      const std::string name = kv.first.as<std::string>();
+      const Node s(kv.second, n.child_path(name), &file_);
+      if (!names.insert(name).second) s.fail("duplicated strategy name");
+      const Node list = s.sequence();
+      if (list.size() == 0) s.fail("a strategy needs at least one motion");
+      Strategy strategy;
+      strategy.name = name;
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string motion = list.item(i).string();
+        if (!task.find_motion(motion)) list.item(i).fail("unknown motion '" + motion + "'");
+        strategy.motions.push_back(motion);
+      }
+      task.strategies.push_back(strategy);
+    }
+  }
+
+  std::string file_;
+  int dimension_ = 3;
+};
+
+}  // namespace
+
+Task parse_task_string(const std::string& yaml_text, const std::string& file_label) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw TaskError(file_label, "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
+                    "malformed YAML: " + e.msg);
+  }
+  try {
+    return Parser(file_label).parse(root);
+  } catch (const YAML::Exception& e) {
+    throw TaskError(file_label, "", std::string("malformed YAML: ") + e.what());
+  }
+}
+
+Task parse_task_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw TaskError(path.string(), "", "cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_task_string(buffer.str(), path.string());
+}
+
+}  // namespace cmt

@@ -1,0 +1,25 @@
+// Reads a task YAML file (contracts.md "Task files") into a Task, checking the schema: unknown, missing and
+// mistyped keys, value ranges, degenerate parts and regions, strategies naming unknown motions.
+// Checks that need the configuration space (regions on the contact surface, empty free space) live in
+// load_task (models/loaded_task.h). Every failure throws TaskError naming file, key path and reason.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "models/task.h"
+
+namespace cmt {
+
+// Planar tasks (dimension: 2) are extruded along y: environment and C-space parts span y in
+// [-kPlanarPartHalfDepth, kPlanarPartHalfDepth], robot parts half of that, and the C-space is clipped to
+// |y| <= kPlanarClipHalfDepth, strictly inside every extruded obstacle, so no y-facing atom is real.
+inline constexpr double kPlanarPartHalfDepth = 1.0;
+inline constexpr double kPlanarRobotHalfDepth = 0.25;
+inline constexpr double kPlanarClipHalfDepth = 0.5;
+
+// Parses and checks the schema. `file_label` names the file in messages (defaults to the path).
+Task parse_task_file(const std::filesystem::path& path);
+Task parse_task_string(const std::string& yaml_text, const std::string& file_label);
+
+}  // namespace cmt

@@ -1,0 +1,163 @@
+// Every validation rule of the task format has a case here: the error must name the file, the key path and the
+// reason (contracts.md "Task files").
+#include "models/task_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "models/loaded_task.h"
+#include "models/task_error.h"
+#include "tests/models/test_tasks.h"
+
+namespace cmt {
+namespace {
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the base task";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Loads and expects a TaskError whose key path and reason contain the given fragments.
+void expect_error(const std::string& yaml, const std::string& key, const std::string& reason) {
+  try {
+    load_task_from_string(yaml, "bad.yaml");
+    ADD_FAILURE() << "no error; expected key '" << key << "' reason '" << reason << "'";
+  } catch (const TaskError& e) {
+    EXPECT_EQ(e.file(), "bad.yaml");
+    EXPECT_NE(e.key().find(key), std::string::npos) << "key was: " << e.key() << " (" << e.what() << ")";
+    EXPECT_NE(e.reason().find(reason), std::string::npos) << "reason was: " << e.reason();
+    EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos);
+  }
+}
+
+TEST(TaskLoader, LoadsTheHole) {
+  auto lt = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const Task& t = lt->task;
+  EXPECT_EQ(t.name, "hole");
+  EXPECT_EQ(t.units, LengthUnit::kInch);
+  EXPECT_DOUBLE_EQ(t.uncertainty.step, 0.2);  // defaults to eps_p
+  EXPECT_EQ(t.cspace.size(), 4u);
+  EXPECT_DOUBLE_EQ(t.cspace[0].friction, 0.48);
+  ASSERT_NE(t.find_strategy("teach"), nullptr);
+  EXPECT_EQ(t.find_strategy("teach")->motions, (std::vector<std::string>{"p2", "p1"}));
+  EXPECT_EQ(t.find_motion("p1")->kind, Motion::Kind::kSpring);
+}
+
+TEST(TaskLoader, NormalizesDamperAndReadsPartFriction) {
+  std::string y = replace(test::kHoleYaml, "p1: {spring: [0, 0, -2.4]}", "p1: {damper: [0, 0, -2]}");
+  y = replace(y, "max: [-1, 6, 0]}", "max: [-1, 6, 0], friction: 0.3}");
+  auto lt = load_task_from_string(y, "x.yaml");
+  EXPECT_EQ(lt->task.find_motion("p1")->target, Vec3(0, 0, -1));
+  EXPECT_DOUBLE_EQ(lt->task.cspace[0].friction, 0.3);
+  EXPECT_DOUBLE_EQ(lt->task.cspace[1].friction, 0.48);
+}
+
+TEST(TaskLoader, GoalMayBeAList) {
+  const std::string y =
+      replace(test::kHoleYaml, "goal: {polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]}",
+              "goal:\n  - point: [0, 0, -2]\n  - polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]");
+  auto lt = load_task_from_string(y, "x.yaml");
+  EXPECT_EQ(lt->task.goal.size(), 2u);
+}
+
+TEST(TaskLoader, MalformedYaml) { expect_error("name: [unclosed", "line", "malformed YAML"); }
+
+TEST(TaskLoader, UnknownKey) {
+  expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: 0.48\nfrction: 0.3"), "frction", "unknown key");
+  expect_error(replace(test::kHoleYaml, "theta_f: 0.05}", "theta_f: 0.05, eps_x: 1}"), "uncertainty.eps_x",
+               "unknown key");
+}
+
+TEST(TaskLoader, MissingKey) {
+  expect_error(replace(test::kHoleYaml, "name: hole\n", ""), "name", "missing required key");
+  expect_error(replace(test::kHoleYaml, "eps_s: 0.2, ", ""), "uncertainty.eps_s", "missing required key");
+  expect_error(replace(test::kHoleYaml, "start: {segment: [[-4, -3, 0], [-2, -3, 0]]}\n", ""), "start",
+               "missing required key");
+}
+
+TEST(TaskLoader, WrongType) {
+  expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: high"), "friction", "expected a number");
+  expect_error(replace(test::kHoleYaml, "p1: {spring: [0, 0, -2.4]}", "p1: {spring: [0, 0]}"), "motions.p1.spring",
+               "expected 3 numbers");
+  expect_error(replace(test::kHoleYaml, "units: in", "units: feet"), "units", "must be one of in, mm, m");
+}
+
+TEST(TaskLoader, DegenerateBox) {
+  expect_error(replace(test::kHoleYaml, "max: [-1, 6, 0]}", "max: [-1, 6, -2]}"), "cspace[0].box",
+               "degenerate box: min z");
+}
+
+TEST(TaskLoader, CoplanarConvexPart) {
+  expect_error(replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3],[1,1,3]]}\n"),
+               "cspace[0].convex.vertices", "non-coplanar");
+  expect_error(replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3]]}\n"),
+               "cspace[0].convex.vertices", "at least 4");
+}
+
+TEST(TaskLoader, VelocityAngleTooLarge) {
+  expect_error(replace(test::kHoleYaml, "theta_v: 0.25", "theta_v: 1.5708"), "uncertainty.theta_v", "< pi/2");
+}
+
+TEST(TaskLoader, NegativeFrictionAndBounds) {
+  expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: -0.1"), "friction", ">= 0");
+  expect_error(replace(test::kHoleYaml, "eps_p: 0.2", "eps_p: -0.2"), "uncertainty.eps_p", ">= 0");
+  expect_error(replace(test::kHoleYaml, "max: [-1, 6, 0]}", "max: [-1, 6, 0], friction: -1}"),
+               "cspace[0].box.friction", ">= 0");
+}
+
+TEST(TaskLoader, RegionNotOnContactSurface) {
+  expect_error(replace(test::kHoleYaml, "[[-4, -3, 0], [-2, -3, 0]]", "[[-4, -3, 0.5], [-2, -3, 0.5]]"), "start",
+               "not on the contact surface");
+  // A segment whose ends touch the surface but whose middle crosses the hole.
+  expect_error(replace(test::kHoleYaml, "[[-4, -3, 0], [-2, -3, 0]]", "[[-3, 0, 0], [3, 0, 0]]"), "start",
+               "not on the contact surface");
+  expect_error(replace(test::kHoleYaml, "[-1, 1, -2]]}", "[-1, 1, -1.9]]}"), "goal", "");
+}
+
+TEST(TaskLoader, StrategyNamingUnknownMotion) {
+  expect_error(replace(test::kHoleYaml, "teach: [p2, p1]", "teach: [p2, p3]"), "strategies.teach[1]",
+               "unknown motion 'p3'");
+}
+
+TEST(TaskLoader, EmptyFreeSpace) {
+  const std::string y = replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - box: {min: [-7, -7, -3], max: [7, 7, 5]}\n");
+  expect_error(y, "bounds", "free space is empty");
+}
+
+TEST(TaskLoader, BadName) { expect_error(replace(test::kHoleYaml, "name: hole", "name: Hole!"), "name", "[a-z0-9_-]+"); }
+
+TEST(TaskLoader, MissingFile) {
+  EXPECT_THROW(load_task("/nonexistent/task.yaml"), TaskError);
+}
+
+TEST(TaskLoader, PlanarTask) {
+  const std::string planar = R"(
+name: planar_step
+dimension: 2
+friction: 0.25
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.25, theta_f: 0.1}
+cspace:
+  - box: {min: [-4, -2], max: [0, 0]}
+  - box: {min: [0, -2], max: [4, -1]}
+bounds: {min: [-4, -2], max: [4, 3]}
+start: {point: [-2, 0]}
+goal: {point: [2, -1]}
+motions:
+  v1: {damper: [1, -1]}
+strategies:
+  s: [v1]
+)";
+  auto lt = load_task_from_string(planar, "planar.yaml");
+  const CSpace& c = lt->cspace;
+  // Polygonal free space: top wall, left wall, right wall, step top (z=0), step riser (x=0), floor (z=-1).
+  EXPECT_EQ(c.faces().size(), 6u);
+  EXPECT_EQ(c.edges().size(), 6u);  // the polygon's corners, extruded along y
+  EXPECT_EQ(c.vertices().size(), 0u);
+  for (const Face& f : c.faces()) EXPECT_NEAR(f.normal.y(), 0.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace cmt
