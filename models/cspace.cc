@@ -87,7 +87,8 @@ PointClass CSpace::classify(const Vec3& p, double tolerance) const {
   }
   for (const ConvexObstacle& ob : obstacles_) {
     bool inside = true;
-    for (std::size_t k = 0; k < ob.normals.size() && inside; ++k) inside = ob.normals[k].dot(p) < ob.offsets[k];
+    for (std::size_t k = 0; k < ob.normals.size() && inside; ++k)
+      inside = ob.normals[k].dot(p) < ob.offsets[k];
     if (inside) return PointClass::kInsideObstacle;
   }
   return PointClass::kFree;

@@ -1,7 +1,8 @@
-// The configuration space of a robot that translates in 3-D (Buckley ch. 2, §6.1): C-obstacles, the boundary of
-// free space decomposed into atoms (open convex faces, open edges, vertices; Buckley L1677, L1846) with their
-// adjacency, outward normals and friction. Built once from a Task by exact construction (cspace_builder.cc,
-// CGAL Epeck) and immutable afterwards; coordinates are stored as doubles rounded from the exact values.
+// The configuration space of a robot that translates in 3-D (Buckley ch. 2, §6.1): C-obstacles, the boundary
+// of free space decomposed into atoms (open convex faces, open edges, vertices; Buckley L1677, L1846) with
+// their adjacency, outward normals and friction. Built once from a Task by exact construction
+// (cspace_builder.cc, CGAL Epeck) and immutable afterwards; coordinates are stored as doubles rounded from
+// the exact values.
 #pragma once
 
 #include <string>
@@ -14,9 +15,9 @@ namespace cmt {
 enum class AtomKind { kFace, kEdge, kVertex };
 const char* atom_kind_name(AtomKind kind);
 
-// How the free space meets an edge. Concave: the free-space dihedral angle is < pi, so the robot can touch both
-// faces at once (a corner it can be pushed into). Convex: an obstacle corner (angle > pi). Flat: the two faces
-// are coplanar pieces of one plane split into convex parts. Non-manifold: more than two faces meet.
+// How the free space meets an edge. Concave: the free-space dihedral angle is < pi, so the robot can touch
+// both faces at once (a corner it can be pushed into). Convex: an obstacle corner (angle > pi). Flat: the two
+// faces are coplanar pieces of one plane split into convex parts. Non-manifold: more than two faces meet.
 enum class EdgeShape { kConcave, kConvex, kFlat, kNonManifold };
 const char* edge_shape_name(EdgeShape shape);
 
@@ -32,9 +33,9 @@ struct Face {
 
 struct Edge {
   int id = 0;
-  Vec3 a, b;                  // end points (the vertices vertex_a, vertex_b)
+  Vec3 a, b;                       // end points (the vertices vertex_a, vertex_b)
   int vertex_a = 0, vertex_b = 0;  // atom ids
-  std::vector<int> faces;     // atom ids of the faces it bounds
+  std::vector<int> faces;          // atom ids of the faces it bounds
   EdgeShape shape = EdgeShape::kFlat;
 };
 

@@ -1,14 +1,18 @@
 // Exact construction of the configuration space and its atoms (Buckley ch. 2 and §6.1).
 //
-// 1. C-obstacles: for convex robot part R and convex environment part O, the C-obstacle O ⊕ (−R) is the convex
+// 1. C-obstacles: for convex robot part R and convex environment part O, the C-obstacle O ⊕ (−R) is the
+// convex
 //    hull of the vertex differences o − r (Lozano-Pérez; Buckley §2.2). C-space parts are taken as given.
-// 2. Faces: for every oriented plane P carrying an obstacle facet or a bounds wall, the boundary of free space on
-//    P is (facets on P with outward normal n) minus (facets on P facing −n) minus (cross-sections of obstacles
-//    whose interior P cuts), clipped to the bounds box. This regularized Boolean is exact (Polygon_set_2, Epeck)
-//    and merges coplanar adjacent facets into maximal regions, which are then split into convex pieces only where
-//    they are not convex (planar_regions.cc).
-// 3. Vertices are the corners of all faces; edges are the face sides split at every vertex lying on them, so a
-//    T-junction (a corner of one face on the side of another) is a vertex of the complex, as in Buckley's hole.
+// 2. Faces: for every oriented plane P carrying an obstacle facet or a bounds wall, the boundary of free
+// space on
+//    P is (facets on P with outward normal n) minus (facets on P facing −n) minus (cross-sections of
+//    obstacles whose interior P cuts), clipped to the bounds box. This regularized Boolean is exact
+//    (Polygon_set_2, Epeck) and merges coplanar adjacent facets into maximal regions, which are then split
+//    into convex pieces only where they are not convex (planar_regions.cc).
+// 3. Vertices are the corners of all faces; edges are the face sides split at every vertex lying on them, so
+// a
+//    T-junction (a corner of one face on the side of another) is a vertex of the complex, as in Buckley's
+//    hole.
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/convex_hull_3.h>
 
@@ -33,21 +37,23 @@ using Polyhedron = CGAL::Polyhedron_3<Kernel>;
 
 struct ExactObstacle {
   std::vector<Point3> vertices;
-  std::vector<Plane3> planes;                 // outward: the obstacle lies on the negative side
-  std::vector<std::vector<Point3>> facets;    // facet polygons, one per plane
+  std::vector<Plane3> planes;               // outward: the obstacle lies on the negative side
+  std::vector<std::vector<Point3>> facets;  // facet polygons, one per plane
   double friction = 0;
   std::string source;
 };
 
 struct ExactFace {
-  Plane3 plane;                  // oriented: positive side is free space
-  std::vector<Point3> polygon;   // CCW around the plane normal
+  Plane3 plane;                 // oriented: positive side is free space
+  std::vector<Point3> polygon;  // CCW around the plane normal
   double friction = 0;
-  bool phantom = false;          // lies on a clipping plane that is not a real wall
+  bool phantom = false;  // lies on a clipping plane that is not a real wall
 };
 
 Point3 to_exact(const Vec3& v) { return Point3(v.x(), v.y(), v.z()); }
-Vec3 to_double(const Point3& p) { return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); }
+Vec3 to_double(const Point3& p) {
+  return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+}
 
 // Projection of an oriented plane to a coordinate plane: drop the axis where the normal is largest; keep the
 // other two in cyclic order so that counter-clockwise in 2-D is counter-clockwise about +axis in 3-D.
@@ -93,7 +99,8 @@ ExactObstacle make_obstacle(const std::vector<Point3>& points, double friction, 
   for (auto v = hull.vertices_begin(); v != hull.vertices_end(); ++v) ob.vertices.push_back(v->point());
   for (auto f = hull.facets_begin(); f != hull.facets_end(); ++f) {
     auto h = f->halfedge();
-    const Plane3 plane(h->vertex()->point(), h->next()->vertex()->point(), h->next()->next()->vertex()->point());
+    const Plane3 plane(h->vertex()->point(), h->next()->vertex()->point(),
+                       h->next()->next()->vertex()->point());
     if (std::find(ob.planes.begin(), ob.planes.end(), plane) == ob.planes.end()) ob.planes.push_back(plane);
   }
   for (const Plane3& plane : ob.planes) {
@@ -107,7 +114,8 @@ ExactObstacle make_obstacle(const std::vector<Point3>& points, double friction, 
 
 // Closed cross-section of a convex point set's hull with a plane (points, unordered), and whether the plane
 // passes through the hull's interior.
-std::vector<Point3> cross_section(const std::vector<Point3>& vertices, const Plane3& plane, bool* cuts_interior) {
+std::vector<Point3> cross_section(const std::vector<Point3>& vertices, const Plane3& plane,
+                                  bool* cuts_interior) {
   std::vector<Point3> pos, neg, out;
   for (const Point3& p : vertices) {
     switch (plane.oriented_side(p)) {
@@ -134,7 +142,8 @@ std::vector<Point3> cross_section(const std::vector<Point3>& vertices, const Pla
 std::vector<Point3> box_corners(const AxisBox& b) {
   std::vector<Point3> c;
   for (int i = 0; i < 8; ++i)
-    c.emplace_back((i & 1) ? b.max.x() : b.min.x(), (i & 2) ? b.max.y() : b.min.y(), (i & 4) ? b.max.z() : b.min.z());
+    c.emplace_back((i & 1) ? b.max.x() : b.min.x(), (i & 2) ? b.max.y() : b.min.y(),
+                   (i & 4) ? b.max.z() : b.min.z());
   return c;
 }
 
@@ -164,7 +173,8 @@ class CSpaceBuilder {
         for (std::size_t j = 0; j < task_.environment.size(); ++j) {
           std::vector<Point3> diff;
           for (const Vec3& o : task_.environment[j].vertices)
-            for (const Vec3& r : task_.robot[i].vertices) diff.push_back(to_exact(o) + (CGAL::ORIGIN - to_exact(r)));
+            for (const Vec3& r : task_.robot[i].vertices)
+              diff.push_back(to_exact(o) + (CGAL::ORIGIN - to_exact(r)));
           obstacles_.push_back(make_obstacle(diff, task_.environment[j].friction,
                                              task_.robot[i].key + " x " + task_.environment[j].key, file));
         }
@@ -262,7 +272,8 @@ class CSpaceBuilder {
       for (int s = 0; s < 6; ++s)
         if (plane == walls_[s]) {
           bool cuts = false;
-          below_by_friction[task_.friction].push_back(project(chart, cross_section(clip_corners_, plane, &cuts)));
+          below_by_friction[task_.friction].push_back(
+              project(chart, cross_section(clip_corners_, plane, &cuts)));
           phantom = !wall_real_[s];
         }
       if (below_by_friction.empty()) continue;
@@ -326,12 +337,12 @@ class CSpaceBuilder {
         std::vector<int> inner;
         for (std::size_t pi = 0; pi < points.size(); ++pi) {
           const Point3& p = points[pi];
-          if (p != a && p != b && CGAL::collinear(a, p, b) && CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
+          if (p != a && p != b && CGAL::collinear(a, p, b) &&
+              CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
             inner.push_back(static_cast<int>(pi));
         }
-        std::sort(inner.begin(), inner.end(), [&](int x, int y) {
-          return CGAL::has_smaller_distance_to_point(a, points[x], points[y]);
-        });
+        std::sort(inner.begin(), inner.end(),
+                  [&](int x, int y) { return CGAL::has_smaller_distance_to_point(a, points[x], points[y]); });
         std::vector<int> on{vertex_index.at(a)};
         on.insert(on.end(), inner.begin(), inner.end());
         on.push_back(vertex_index.at(b));
@@ -367,16 +378,19 @@ class CSpaceBuilder {
     std::vector<int> vertex_order;
     for (std::size_t i = 0; i < points.size(); ++i)
       if (!on_phantom_wall(points[i])) vertex_order.push_back(static_cast<int>(i));
-    std::sort(vertex_order.begin(), vertex_order.end(), [&](int a, int b) { return PointLess()(points[a], points[b]); });
+    std::sort(vertex_order.begin(), vertex_order.end(),
+              [&](int a, int b) { return PointLess()(points[a], points[b]); });
 
     std::vector<std::pair<int, int>> edge_order;
     for (const auto& [key, fl] : edge_faces) {
       bool real_face = false;
       for (int f : fl) real_face = real_face || !faces_[f].phantom;
-      if (real_face && !on_same_phantom_wall(points[key.first], points[key.second])) edge_order.push_back(key);
+      if (real_face && !on_same_phantom_wall(points[key.first], points[key.second]))
+        edge_order.push_back(key);
     }
     std::sort(edge_order.begin(), edge_order.end(), [&](const auto& a, const auto& b) {
-      const Point3 &a0 = points[a.first], &a1 = points[a.second], &b0 = points[b.first], &b1 = points[b.second];
+      const Point3 &a0 = points[a.first], &a1 = points[a.second], &b0 = points[b.first],
+                   &b1 = points[b.second];
       const Point3& alo = PointLess()(a0, a1) ? a0 : a1;
       const Point3& ahi = PointLess()(a0, a1) ? a1 : a0;
       const Point3& blo = PointLess()(b0, b1) ? b0 : b1;
@@ -454,7 +468,8 @@ class CSpaceBuilder {
                       "the free space is empty: the obstacles cover the whole workspace");
   }
 
-  // Buckley's convex/concave edges, decided exactly: face 1 lies on the free side of face 2's plane ⇒ concave.
+  // Buckley's convex/concave edges, decided exactly: face 1 lies on the free side of face 2's plane ⇒
+  // concave.
   EdgeShape classify_edge(const std::vector<int>& fl, const Point3& a, const Point3& b) const {
     if (fl.size() != 2) return EdgeShape::kNonManifold;
     const ExactFace& f1 = faces_[fl[0]];

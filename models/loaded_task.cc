@@ -55,7 +55,8 @@ std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path) {
   return finish(parse_task_file(path));
 }
 
-std::shared_ptr<const LoadedTask> load_task_from_string(const std::string& yaml_text, const std::string& label) {
+std::shared_ptr<const LoadedTask> load_task_from_string(const std::string& yaml_text,
+                                                        const std::string& label) {
   return finish(parse_task_string(yaml_text, label));
 }
 

@@ -1,6 +1,6 @@
 // A task together with its configuration space: what every command works on. Loading checks the schema
-// (task_loader.h) and then what needs the C-space: start and goal regions must lie on the contact surface and the
-// free space must not be empty. Nothing is half-loaded: either both parts exist or TaskError is thrown.
+// (task_loader.h) and then what needs the C-space: start and goal regions must lie on the contact surface and
+// the free space must not be empty. Nothing is half-loaded: either both parts exist or TaskError is thrown.
 #pragma once
 
 #include <filesystem>
@@ -11,9 +11,9 @@
 
 namespace cmt {
 
-// A start/goal region counts as on the contact surface when every sample of it lies within this fraction of the
-// scene scale (CSpace::scale, the diagonal of the atoms' bounding box) of a face: 1e-6 absorbs decimal rounding
-// of hand-written coordinates and nothing more.
+// A start/goal region counts as on the contact surface when every sample of it lies within this fraction of
+// the scene scale (CSpace::scale, the diagonal of the atoms' bounding box) of a face: 1e-6 absorbs decimal
+// rounding of hand-written coordinates and nothing more.
 inline constexpr double kRegionOnSurfaceRelativeTolerance = 1e-6;
 
 struct LoadedTask {
@@ -22,9 +22,11 @@ struct LoadedTask {
   double surface_tolerance() const { return kRegionOnSurfaceRelativeTolerance * cspace.scale(); }
 };
 
-// Loads, builds and checks; shared_ptr<const> because a loaded task never changes and is shared across threads.
+// Loads, builds and checks; shared_ptr<const> because a loaded task never changes and is shared across
+// threads.
 std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path);
-std::shared_ptr<const LoadedTask> load_task_from_string(const std::string& yaml_text, const std::string& label);
+std::shared_ptr<const LoadedTask> load_task_from_string(const std::string& yaml_text,
+                                                        const std::string& label);
 
 // Points that stand for a region when checking it: its vertices, and for segments and polygons a grid of
 // interior points (a segment across a hole has its ends on the surface but not its middle).

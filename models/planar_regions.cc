@@ -60,8 +60,8 @@ Polygon2Points points_of(const Polygon2& p) { return Polygon2Points(p.vertices_b
 }  // namespace
 
 std::vector<RegionWithHoles> planar_region(const std::vector<Polygon2Points>& below,
-                                           const std::vector<Polygon2Points>& above, const Polygon2Points& clip,
-                                           bool use_clip) {
+                                           const std::vector<Polygon2Points>& above,
+                                           const Polygon2Points& clip, bool use_clip) {
   PolygonSet2 set;
   for (const auto& b : below)
     if (auto p = convex_ccw(b)) set.join(*p);
@@ -78,7 +78,8 @@ std::vector<RegionWithHoles> planar_region(const std::vector<Polygon2Points>& be
   for (const auto& pwh : pieces) {
     RegionWithHoles r;
     r.outer = strip_collinear(points_of(pwh.outer_boundary()));
-    for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) r.holes.push_back(strip_collinear(points_of(*h)));
+    for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h)
+      r.holes.push_back(strip_collinear(points_of(*h)));
     if (r.outer.size() >= 3) out.push_back(std::move(r));
   }
   return out;
@@ -107,12 +108,11 @@ std::vector<Polygon2Points> convex_pieces(const RegionWithHoles& region) {
     }
   }
   // Deterministic cut order, independent of how the Boolean stage ordered the loops.
-  std::sort(reflex.begin(), reflex.end(), [](const Reflex& a, const Reflex& b) {
-    return CGAL::compare_xy(a.at, b.at) == CGAL::SMALLER;
-  });
+  std::sort(reflex.begin(), reflex.end(),
+            [](const Reflex& a, const Reflex& b) { return CGAL::compare_xy(a.at, b.at) == CGAL::SMALLER; });
   for (const Reflex& r : reflex) {
-    const Kernel::Vector_2 d_in = r.at - r.prev;     // continue the incoming edge
-    const Kernel::Vector_2 d_out = r.at - r.next;    // continue the outgoing edge backwards
+    const Kernel::Vector_2 d_in = r.at - r.prev;   // continue the incoming edge
+    const Kernel::Vector_2 d_out = r.at - r.next;  // continue the outgoing edge backwards
     // Prefer the direction most aligned with the second axis: compare y^2/|d|^2 exactly.
     const FT a_in = d_in.y() * d_in.y() * d_out.squared_length();
     const FT a_out = d_out.y() * d_out.y() * d_in.squared_length();
@@ -128,7 +128,7 @@ std::vector<Polygon2Points> convex_pieces(const RegionWithHoles& region) {
         candidate = *p;
       } else if (const Segment2* seg = boost::get<Segment2>(&*x)) {
         candidate = CGAL::has_smaller_distance_to_point(r.at, seg->source(), seg->target()) ? seg->source()
-                                                                                              : seg->target();
+                                                                                            : seg->target();
       } else {
         continue;
       }

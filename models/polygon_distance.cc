@@ -22,7 +22,8 @@ double distance_to_convex_polygon(const Vec3& p, const std::vector<Vec3>& polygo
   }
   if (inside) return std::abs(normal.dot(p - polygon[0]));
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) best = std::min(best, distance_to_segment(p, polygon[i], polygon[(i + 1) % n]));
+  for (std::size_t i = 0; i < n; ++i)
+    best = std::min(best, distance_to_segment(p, polygon[i], polygon[(i + 1) % n]));
   return best;
 }
 

@@ -1,5 +1,5 @@
-// A loaded task: geometry, error bounds, start/goal regions, motions and strategies (contracts.md "Task files").
-// Immutable once loaded; every length is in the task's own units.
+// A loaded task: geometry, error bounds, start/goal regions, motions and strategies (contracts.md "Task
+// files"). Immutable once loaded; every length is in the task's own units.
 #pragma once
 
 #include <Eigen/Dense>
@@ -31,8 +31,8 @@ struct AxisBox {
   Vec3 max = Vec3::Zero();
 };
 
-// A convex part: a box or the convex hull of points. `vertices` always holds the points whose hull is the part
-// (the 8 corners for a box). `key` is the YAML key path it was read from, for messages.
+// A convex part: a box or the convex hull of points. `vertices` always holds the points whose hull is the
+// part (the 8 corners for a box). `key` is the YAML key path it was read from, for messages.
 struct ConvexPart {
   enum class Shape { kBox, kConvex };
   Shape shape = Shape::kBox;
@@ -42,7 +42,8 @@ struct ConvexPart {
   std::string key;
 };
 
-// A start or goal region in configuration space (contracts.md): a point, a segment, or a convex planar polygon.
+// A start or goal region in configuration space (contracts.md): a point, a segment, or a convex planar
+// polygon.
 struct Region {
   enum class Kind { kPoint, kSegment, kPolygon };
   Kind kind = Kind::kPoint;
@@ -59,7 +60,8 @@ struct Motion {
   Vec3 target = Vec3::Zero();  // damper: unit velocity direction; spring: commanded position
 };
 
-// A decision-free sequence of motions (contracts.md). Conditional strategies extend this later (Buckley §4.2).
+// A decision-free sequence of motions (contracts.md). Conditional strategies extend this later (Buckley
+// §4.2).
 struct Strategy {
   std::string name;
   std::vector<std::string> motions;

@@ -22,7 +22,8 @@ constexpr double kPolygonPlanarityTolerance = 1e-9;
 // A YAML node together with its key path, so that every message can say where the problem is.
 class Node {
  public:
-  Node(YAML::Node node, std::string path, const std::string* file) : node_(node), path_(std::move(path)), file_(file) {}
+  Node(YAML::Node node, std::string path, const std::string* file)
+      : node_(node), path_(std::move(path)), file_(file) {}
 
   [[noreturn]] void fail(const std::string& reason) const { throw TaskError(*file_, path_, reason); }
   const std::string& path() const { return path_; }
@@ -45,7 +46,9 @@ class Node {
       if (!seen.insert(key).second) Node(kv.second, child_path(key), file_).fail("duplicated key");
     }
   }
-  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+  bool has(const std::string& key) const {
+    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+  }
   Node at(const std::string& key) const {
     if (!has(key)) Node(YAML::Node(), child_path(key), file_).fail("missing required key");
     return Node(node_[key], child_path(key), file_);
@@ -87,8 +90,8 @@ class Parser {
   Task parse(const YAML::Node& root_node) {
     Node root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
-    root.require_map({"name", "description", "units", "friction", "uncertainty", "dimension", "robot", "environment",
-                      "cspace", "bounds", "start", "goal", "motions", "strategies"});
+    root.require_map({"name", "description", "units", "friction", "uncertainty", "dimension", "robot",
+                      "environment", "cspace", "bounds", "start", "goal", "motions", "strategies"});
     Task task;
     task.source_file = file_;
     task.name = root.at("name").string();
@@ -213,7 +216,8 @@ class Parser {
       const bool is_box = item.has("box");
       const Node body = item.at(is_box ? "box" : "convex");
       part.key = body.path();
-      std::set<std::string> allowed = is_box ? std::set<std::string>{"min", "max"} : std::set<std::string>{"vertices"};
+      std::set<std::string> allowed =
+          is_box ? std::set<std::string>{"min", "max"} : std::set<std::string>{"vertices"};
       if (!robot) allowed.insert("friction");
       if (is_box) {
         part.shape = ConvexPart::Shape::kBox;
@@ -236,7 +240,8 @@ class Parser {
         }
         check_solid(body.at("vertices"), part.vertices);
       }
-      if (!robot && body.has("friction")) part.friction = nonnegative(body.at("friction"), "friction coefficient");
+      if (!robot && body.has("friction"))
+        part.friction = nonnegative(body.at("friction"), "friction coefficient");
       parts.push_back(std::move(part));
     }
     return parts;
@@ -244,7 +249,8 @@ class Parser {
 
   // A convex part needs 4 points that are not coplanar (a solid hull). The test is relative to the part size.
   void check_solid(const Node& n, const std::vector<Vec3>& pts) const {
-    if (pts.size() < 4) n.fail("a convex part needs at least 4 non-coplanar points, got " + std::to_string(pts.size()));
+    if (pts.size() < 4)
+      n.fail("a convex part needs at least 4 non-coplanar points, got " + std::to_string(pts.size()));
     double diameter = 0;
     for (const Vec3& p : pts)
       for (const Vec3& q : pts) diameter = std::max(diameter, (p - q).norm());
@@ -257,7 +263,9 @@ class Parser {
         for (std::size_t k = j + 1; k < pts.size(); ++k)
           best = std::max(best, std::abs((pts[i] - a).cross(pts[j] - a).dot(pts[k] - a)));
     if (best <= 1e-12 * diameter * diameter * diameter)
-      n.fail("a convex part needs at least 4 non-coplanar points; these are coplanar (a flat hull has no volume)");
+      n.fail(
+          "a convex part needs at least 4 non-coplanar points; these are coplanar (a flat hull has no "
+          "volume)");
   }
 
   Region parse_region(const Node& n) const {
@@ -275,12 +283,14 @@ class Parser {
     for (std::size_t i = 0; i < pts.size(); ++i) r.points.push_back(parse_vector(pts.item(i)));
     if (segment) {
       r.kind = Region::Kind::kSegment;
-      if (r.points.size() != 2) pts.fail("a segment has exactly 2 points, got " + std::to_string(r.points.size()));
+      if (r.points.size() != 2)
+        pts.fail("a segment has exactly 2 points, got " + std::to_string(r.points.size()));
       if ((r.points[0] - r.points[1]).norm() == 0) pts.fail("degenerate segment: both ends coincide");
       return r;
     }
     r.kind = Region::Kind::kPolygon;
-    if (r.points.size() < 3) pts.fail("a polygon needs at least 3 points, got " + std::to_string(r.points.size()));
+    if (r.points.size() < 3)
+      pts.fail("a polygon needs at least 3 points, got " + std::to_string(r.points.size()));
     check_convex_planar(pts, r.points);
     return r;
   }
@@ -322,7 +332,8 @@ class Parser {
       } else {
         motion.kind = Motion::Kind::kDamper;
         motion.target = parse_vector(m.at("damper"));
-        if (motion.target.norm() == 0) m.at("damper").fail("the commanded velocity direction is the zero vector");
+        if (motion.target.norm() == 0)
+          m.at("damper").fail("the commanded velocity direction is the zero vector");
         motion.target.normalize();
       }
       task.motions.push_back(motion);
@@ -360,8 +371,10 @@ Task parse_task_string(const std::string& yaml_text, const std::string& file_lab
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::ParserException& e) {
-    throw TaskError(file_label, "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
-                    "malformed YAML: " + e.msg);
+    throw TaskError(
+        file_label,
+        "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
+        "malformed YAML: " + e.msg);
   }
   try {
     return Parser(file_label).parse(root);

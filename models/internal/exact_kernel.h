@@ -27,8 +27,8 @@ struct RegionWithHoles {
 // Boolean stage on one plane (Polygon_set_2, regularized): (union of `below`) minus (union of `above`),
 // intersected with `clip` when `clip` is non-empty. Inputs are convex polygons in any orientation.
 std::vector<RegionWithHoles> planar_region(const std::vector<Polygon2Points>& below,
-                                           const std::vector<Polygon2Points>& above, const Polygon2Points& clip,
-                                           bool use_clip);
+                                           const std::vector<Polygon2Points>& above,
+                                           const Polygon2Points& clip, bool use_clip);
 
 // Splits a region into convex pieces, only where it is not convex: from each reflex vertex the incident edge
 // most aligned with the plane's second axis is extended until it meets the boundary or an earlier cut (for a

@@ -77,7 +77,8 @@ TEST(CSpace, AtomIdsAreStable) {
   ASSERT_EQ(a->cspace.atom_count(), b->cspace.atom_count());
   for (std::size_t i = 0; i < a->cspace.faces().size(); ++i)
     EXPECT_EQ(a->cspace.faces()[i].polygon, b->cspace.faces()[i].polygon);
-  for (std::size_t i = 0; i < a->cspace.edges().size(); ++i) EXPECT_EQ(a->cspace.edges()[i].a, b->cspace.edges()[i].a);
+  for (std::size_t i = 0; i < a->cspace.edges().size(); ++i)
+    EXPECT_EQ(a->cspace.edges()[i].a, b->cspace.edges()[i].a);
 }
 
 TEST(CSpace, ClassifiesPoints) {

@@ -47,7 +47,8 @@ TEST(FrictionCone, ConcaveEdgeConeIsTheSumOfFaceCones) {
 }
 
 TEST(FrictionCone, VertexConeWithLargeFrictionJams) {
-  // Three orthogonal faces with mu = 1: the summed cone contains -(1,1,1) (wedging), and with mu = .25 it does not.
+  // Three orthogonal faces with mu = 1: the summed cone contains -(1,1,1) (wedging), and with mu = .25 it
+  // does not.
   auto vertex = [](double mu) {
     return FrictionCone::sum(
         {{Vec3::UnitX(), std::atan(mu)}, {Vec3::UnitY(), std::atan(mu)}, {Vec3::UnitZ(), std::atan(mu)}});

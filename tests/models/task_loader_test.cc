@@ -1,5 +1,5 @@
-// Every validation rule of the task format has a case here: the error must name the file, the key path and the
-// reason (contracts.md "Task files").
+// Every validation rule of the task format has a case here: the error must name the file, the key path and
+// the reason (contracts.md "Task files").
 #include "models/task_loader.h"
 
 #include <gtest/gtest.h>
@@ -56,9 +56,9 @@ TEST(TaskLoader, NormalizesDamperAndReadsPartFriction) {
 }
 
 TEST(TaskLoader, GoalMayBeAList) {
-  const std::string y =
-      replace(test::kHoleYaml, "goal: {polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]}",
-              "goal:\n  - point: [0, 0, -2]\n  - polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]");
+  const std::string y = replace(
+      test::kHoleYaml, "goal: {polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]}",
+      "goal:\n  - point: [0, 0, -2]\n  - polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]");
   auto lt = load_task_from_string(y, "x.yaml");
   EXPECT_EQ(lt->task.goal.size(), 2u);
 }
@@ -66,7 +66,8 @@ TEST(TaskLoader, GoalMayBeAList) {
 TEST(TaskLoader, MalformedYaml) { expect_error("name: [unclosed", "line", "malformed YAML"); }
 
 TEST(TaskLoader, UnknownKey) {
-  expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: 0.48\nfrction: 0.3"), "frction", "unknown key");
+  expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: 0.48\nfrction: 0.3"), "frction",
+               "unknown key");
   expect_error(replace(test::kHoleYaml, "theta_f: 0.05}", "theta_f: 0.05, eps_x: 1}"), "uncertainty.eps_x",
                "unknown key");
 }
@@ -80,8 +81,8 @@ TEST(TaskLoader, MissingKey) {
 
 TEST(TaskLoader, WrongType) {
   expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: high"), "friction", "expected a number");
-  expect_error(replace(test::kHoleYaml, "p1: {spring: [0, 0, -2.4]}", "p1: {spring: [0, 0]}"), "motions.p1.spring",
-               "expected 3 numbers");
+  expect_error(replace(test::kHoleYaml, "p1: {spring: [0, 0, -2.4]}", "p1: {spring: [0, 0]}"),
+               "motions.p1.spring", "expected 3 numbers");
   expect_error(replace(test::kHoleYaml, "units: in", "units: feet"), "units", "must be one of in, mm, m");
 }
 
@@ -91,10 +92,12 @@ TEST(TaskLoader, DegenerateBox) {
 }
 
 TEST(TaskLoader, CoplanarConvexPart) {
-  expect_error(replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3],[1,1,3]]}\n"),
+  expect_error(replace(test::kHoleYaml, "cspace:\n",
+                       "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3],[1,1,3]]}\n"),
                "cspace[0].convex.vertices", "non-coplanar");
-  expect_error(replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3]]}\n"),
-               "cspace[0].convex.vertices", "at least 4");
+  expect_error(
+      replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - convex: {vertices: [[0,0,3],[1,0,3],[0,1,3]]}\n"),
+      "cspace[0].convex.vertices", "at least 4");
 }
 
 TEST(TaskLoader, VelocityAngleTooLarge) {
@@ -109,8 +112,8 @@ TEST(TaskLoader, NegativeFrictionAndBounds) {
 }
 
 TEST(TaskLoader, RegionNotOnContactSurface) {
-  expect_error(replace(test::kHoleYaml, "[[-4, -3, 0], [-2, -3, 0]]", "[[-4, -3, 0.5], [-2, -3, 0.5]]"), "start",
-               "not on the contact surface");
+  expect_error(replace(test::kHoleYaml, "[[-4, -3, 0], [-2, -3, 0]]", "[[-4, -3, 0.5], [-2, -3, 0.5]]"),
+               "start", "not on the contact surface");
   // A segment whose ends touch the surface but whose middle crosses the hole.
   expect_error(replace(test::kHoleYaml, "[[-4, -3, 0], [-2, -3, 0]]", "[[-3, 0, 0], [3, 0, 0]]"), "start",
                "not on the contact surface");
@@ -123,15 +126,16 @@ TEST(TaskLoader, StrategyNamingUnknownMotion) {
 }
 
 TEST(TaskLoader, EmptyFreeSpace) {
-  const std::string y = replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - box: {min: [-7, -7, -3], max: [7, 7, 5]}\n");
+  const std::string y =
+      replace(test::kHoleYaml, "cspace:\n", "cspace:\n  - box: {min: [-7, -7, -3], max: [7, 7, 5]}\n");
   expect_error(y, "bounds", "free space is empty");
 }
 
-TEST(TaskLoader, BadName) { expect_error(replace(test::kHoleYaml, "name: hole", "name: Hole!"), "name", "[a-z0-9_-]+"); }
-
-TEST(TaskLoader, MissingFile) {
-  EXPECT_THROW(load_task("/nonexistent/task.yaml"), TaskError);
+TEST(TaskLoader, BadName) {
+  expect_error(replace(test::kHoleYaml, "name: hole", "name: Hole!"), "name", "[a-z0-9_-]+");
 }
+
+TEST(TaskLoader, MissingFile) { EXPECT_THROW(load_task("/nonexistent/task.yaml"), TaskError); }
 
 TEST(TaskLoader, PlanarTask) {
   const std::string planar = R"(

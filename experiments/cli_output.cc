@@ -1,0 +1,27 @@
+#include "experiments/cli_output.h"
+
+#include <iostream>
+
+namespace cmt {
+
+nlohmann::json point_json(const Vec3& p, int dimension) {
+  if (dimension == 2) return nlohmann::json::array({p.x(), p.z()});
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
+
+void print_json(const nlohmann::json& object) { std::cout << object.dump(2) << std::endl; }
+
+int report_bad_input(const std::string& message, bool json, const std::string& file, const std::string& key,
+                     const std::string& reason) {
+  std::cerr << "cmt: error: " << message << std::endl;
+  if (json) {
+    nlohmann::json error = {{"message", message}};
+    if (!file.empty()) error["file"] = file;
+    if (!key.empty()) error["key"] = key;
+    if (!reason.empty()) error["reason"] = reason;
+    print_json({{"error", error}, {"exit_status", kExitBadInput}});
+  }
+  return kExitBadInput;
+}
+
+}  // namespace cmt

@@ -1,0 +1,334 @@
+// MJCF export (docs/mujoco-scene.md). Everything is emitted as text; no MuJoCo call is needed to write a
+// scene.
+#include "sim/mjcf_export.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "models/task_loader.h"
+
+namespace cmt {
+
+namespace {
+
+// Collision classes (MuJoCo collides two geoms when contype1 & conaffinity2 or contype2 & conaffinity1).
+// Robot parts (bit 1) meet environment parts; the reference cube (bit 2) meets the bounds walls, which
+// constrain the reference point only. Environment and walls have contype 0, so they never collide with each
+// other.
+constexpr int kPartBit = 1;
+constexpr int kReferenceBit = 2;
+
+// Shortest decimal text that reads back to the same double, so the scene carries the task's exact values.
+std::string num(double v) {
+  if (v == 0) v = 0;  // no "-0"
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  return std::string(buffer, result.ptr);
+}
+
+std::string vec(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+
+// XML comments may not contain "--".
+std::string comment_text(std::string text) {
+  for (std::size_t i; (i = text.find("--")) != std::string::npos;) text.replace(i, 2, "- -");
+  return text;
+}
+
+AxisBox bounding_box(const ConvexPart& part) {
+  if (part.shape == ConvexPart::Shape::kBox) return part.box;
+  AxisBox b{Vec3::Constant(std::numeric_limits<double>::infinity()),
+            Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Vec3& v : part.vertices) {
+    b.min = b.min.cwiseMin(v);
+    b.max = b.max.cwiseMax(v);
+  }
+  return b;
+}
+
+// The erosion P ⊖ cube_h of a convex C-obstacle P = {x : n_i·x <= d_i}: the cube's support in direction n is
+// h‖n‖₁, so P ⊖ cube_h = {x : n_i·x <= d_i − h‖n_i‖₁}. Its vertices are the feasible intersections of plane
+// triples. Empty when the erosion has no interior (the part is thinner than 2h somewhere).
+std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, double h, double tolerance) {
+  const std::size_t n = ob.normals.size();
+  std::vector<double> e(n);
+  for (std::size_t i = 0; i < n; ++i) e[i] = ob.offsets[i] - h * ob.normals[i].lpNorm<1>();
+  std::vector<Vec3> points;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k) {
+        Eigen::Matrix3d a;
+        a.row(0) = ob.normals[i];
+        a.row(1) = ob.normals[j];
+        a.row(2) = ob.normals[k];
+        if (std::abs(a.determinant()) < 1e-9) continue;  // unit normals: near-parallel planes, no vertex
+        const Vec3 x = a.partialPivLu().solve(Vec3(e[i], e[j], e[k]));
+        bool feasible = true;
+        for (std::size_t m = 0; m < n && feasible; ++m) feasible = ob.normals[m].dot(x) <= e[m] + tolerance;
+        if (!feasible) continue;
+        if (std::none_of(points.begin(), points.end(),
+                         [&](const Vec3& p) { return (p - x).norm() <= tolerance; }))
+          points.push_back(x);
+      }
+  if (points.size() < 4) return std::nullopt;
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : points) centre += p;
+  centre /= static_cast<double>(points.size());
+  // A solid erosion has its vertex centroid strictly inside; a flat or degenerate one does not.
+  for (std::size_t i = 0; i < n; ++i)
+    if (e[i] - ob.normals[i].dot(centre) <= 1e3 * tolerance) return std::nullopt;
+  return points;
+}
+
+struct Writer {
+  std::ostringstream out;
+  double s = 1;  // metres per task unit
+
+  void box(const std::string& name, const std::string& note, const AxisBox& b, double shrink, double friction,
+           int contype, int conaffinity, const char* rgba, const char* indent) {
+    const Vec3 centre = 0.5 * (b.min + b.max) * s;
+    const Vec3 half = (0.5 * (b.max - b.min) - Vec3::Constant(shrink)) * s;
+    out << indent << "<geom name=\"" << name << "\" type=\"box\" pos=\"" << vec(centre) << "\" size=\""
+        << vec(half) << "\" friction=\"" << num(friction) << " 0 0\" contype=\"" << contype
+        << "\" conaffinity=\"" << conaffinity << "\" rgba=\"" << rgba << "\"/>";
+    if (!note.empty()) out << "  <!-- " << comment_text(note) << " -->";
+    out << "\n";
+  }
+
+  void mesh_geom(const std::string& name, const std::string& note, double friction, int contype,
+                 int conaffinity, const char* rgba, const char* indent) {
+    out << indent << "<geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" friction=\""
+        << num(friction) << " 0 0\" contype=\"" << contype << "\" conaffinity=\"" << conaffinity
+        << "\" rgba=\"" << rgba << "\"/>";
+    if (!note.empty()) out << "  <!-- " << comment_text(note) << " -->";
+    out << "\n";
+  }
+
+  void mesh_asset(const std::string& name, const std::vector<Vec3>& vertices) {
+    out << "    <mesh name=\"" << name << "\" vertex=\"";
+    for (std::size_t i = 0; i < vertices.size(); ++i) out << (i ? "  " : "") << vec(vertices[i] * s);
+    out << "\"/>\n";
+  }
+};
+
+constexpr char kEnvRgba[] = "0.55 0.57 0.62 1";
+constexpr char kWallRgba[] = "0.8 0.8 0.85 0.15";
+constexpr char kRobotRgba[] = "0.9 0.45 0.2 1";
+constexpr char kReferenceRgba[] = "0.2 0.55 0.9 0.6";
+
+}  // namespace
+
+std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, SceneInfo* info) {
+  const Task& task = loaded.task;
+  const CSpace& cspace = loaded.cspace;
+  const bool cspace_form = !task.physical();
+  const double scale = cspace.scale();
+  const double tolerance = 1e-9 * scale;
+
+  // Reference cube half size h: small against the scene, and at most a quarter of the thinnest part, so that
+  // every C-space box shrunk by h keeps at least half its extent.
+  double thinnest = std::numeric_limits<double>::infinity();
+  auto consider = [&](const std::vector<ConvexPart>& parts) {
+    for (const ConvexPart& p : parts) {
+      const AxisBox b = bounding_box(p);
+      thinnest = std::min(thinnest, (b.max - b.min).minCoeff());
+    }
+  };
+  if (cspace_form) {
+    consider(task.cspace);
+  } else {
+    consider(task.robot);
+    consider(task.environment);
+  }
+  double h = 0.05 * scale;
+  if (std::isfinite(thinnest)) h = std::min(h, 0.25 * thinnest);
+
+  // Convex C-space parts are eroded by the cube; a thin or sharp part may need a smaller cube.
+  std::vector<std::vector<Vec3>> eroded(task.cspace.size());
+  if (cspace_form) {
+    if (cspace.obstacles().size() != task.cspace.size())
+      throw std::logic_error("mjcf_xml: C-obstacles do not match the task's cspace parts");
+    for (int attempt = 0;; ++attempt) {
+      bool ok = true;
+      for (std::size_t i = 0; i < task.cspace.size() && ok; ++i) {
+        if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
+        auto points = erode(cspace.obstacles()[i], h, tolerance);
+        if (points)
+          eroded[i] = std::move(*points);
+        else
+          ok = false;
+      }
+      if (ok) break;
+      if (attempt == 20)
+        throw std::runtime_error(task.source_file + ": a convex cspace part is too thin to export to MuJoCo");
+      h *= 0.5;
+    }
+  }
+  // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
+  // tunnel through at simulated speeds.
+  const double wall = 0.2 * scale;
+  const double s = meters_per_unit(task.units);
+  if (info) *info = SceneInfo{s, h, task.bounds ? wall : 0.0, cspace_form};
+
+  Writer w;
+  w.s = s;
+  std::ostringstream& out = w.out;
+  out << "<!-- cmt export-mjcf: task '" << comment_text(task.name) << "'";
+  // The file name only: the scene text must not depend on where the task was loaded from.
+  if (!task.source_file.empty())
+    out << " (" << comment_text(std::filesystem::path(task.source_file).filename().string()) << ")";
+  out << "\n     units: " << unit_name(task.units) << ", " << num(s)
+      << " m per unit; every length below is in metres (task length x " << num(s) << ").\n"
+      << "     scene scale (C-space diagonal): " << num(scale) << " " << unit_name(task.units) << " = "
+      << num(scale * s) << " m.\n"
+      << "     " << (cspace_form ? "C-space form" : "physical form")
+      << ": joints x, y, z (slide) = configuration-space point in metres; reference cube half size h = "
+      << num(h) << " " << unit_name(task.units)
+      << (cspace_form ? "; C-space boxes and walls are shrunk by h." : "; walls shrunk by h.")
+      << "\n     See docs/mujoco-scene.md. -->\n";
+  out << "<mujoco model=\"" << task.name << "\">\n";
+  out << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
+  const double solref = options.solref_timesteps * options.timestep;
+  out << "  <option timestep=\"" << num(options.timestep) << "\" integrator=\"Euler\" gravity=\"0 0 0\""
+      << " cone=\"elliptic\" impratio=\"" << num(options.impratio) << "\" solver=\"Newton\" iterations=\""
+      << options.solver_iterations << "\" tolerance=\"" << num(options.solver_tolerance)
+      << "\" noslip_iterations=\"" << options.noslip_iterations << "\" noslip_tolerance=\""
+      << num(options.solver_tolerance) << "\"/>\n";
+
+  // Contact buffer: a box-box pair yields at most 8 contacts (a mesh pair 1); 3 constraint rows per elliptic
+  // contact with condim 3. Capped because MuJoCo 2.2 allocates njmax² numbers per mjData; d->warning reports
+  // an overflow.
+  const int robot_geoms = cspace_form ? 1 : static_cast<int>(task.robot.size());
+  const int env_geoms =
+      cspace_form ? static_cast<int>(task.cspace.size()) : static_cast<int>(task.environment.size());
+  const int wall_geoms = task.bounds ? 6 : 0;
+  const int pairs = robot_geoms * env_geoms + wall_geoms;
+  const int nconmax = std::clamp(8 * pairs, 64, 256);
+  out << "  <size nconmax=\"" << nconmax << "\" njmax=\"" << 3 * nconmax << "\"/>\n";
+
+  out << "  <default>\n"
+      << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp) << " "
+      << num(options.solimp) << " 0.001\"/>\n"
+      << "    <joint type=\"slide\" damping=\"" << num(options.damping)
+      << "\" stiffness=\"0\" armature=\"0\"/>\n"
+      << "  </default>\n";
+
+  // Mesh assets for convex parts (MuJoCo collides their convex hulls).
+  Writer meshes;
+  meshes.s = s;
+  if (cspace_form) {
+    for (std::size_t i = 0; i < task.cspace.size(); ++i)
+      if (task.cspace[i].shape == ConvexPart::Shape::kConvex)
+        meshes.mesh_asset("cspace" + std::to_string(i), eroded[i]);
+  } else {
+    for (std::size_t i = 0; i < task.environment.size(); ++i)
+      if (task.environment[i].shape == ConvexPart::Shape::kConvex)
+        meshes.mesh_asset("env" + std::to_string(i), task.environment[i].vertices);
+    for (std::size_t i = 0; i < task.robot.size(); ++i)
+      if (task.robot[i].shape == ConvexPart::Shape::kConvex)
+        meshes.mesh_asset("robot" + std::to_string(i), task.robot[i].vertices);
+  }
+  if (!meshes.out.str().empty()) out << "  <asset>\n" << meshes.out.str() << "  </asset>\n";
+
+  out << "  <worldbody>\n";
+  const char* in2 = "    ";
+  const char* in3 = "      ";
+  if (cspace_form) {
+    for (std::size_t i = 0; i < task.cspace.size(); ++i) {
+      const ConvexPart& p = task.cspace[i];
+      const std::string name = "cspace" + std::to_string(i);
+      if (p.shape == ConvexPart::Shape::kBox)
+        w.box(name, p.key + ", shrunk by h", p.box, h, p.friction, 0, kPartBit, kEnvRgba, in2);
+      else
+        w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
+    }
+  } else {
+    for (std::size_t i = 0; i < task.environment.size(); ++i) {
+      const ConvexPart& p = task.environment[i];
+      const std::string name = "env" + std::to_string(i);
+      if (p.shape == ConvexPart::Shape::kBox)
+        w.box(name, p.key, p.box, 0, p.friction, 0, kPartBit, kEnvRgba, in2);
+      else
+        w.mesh_geom(name, p.key, p.friction, 0, kPartBit, kEnvRgba, in2);
+    }
+  }
+  if (task.bounds) {
+    // Six slabs of thickness `wall` just outside the bounds, overlapping at the corners so that every point
+    // outside the bounds (up to `wall` away) lies in one; shrunk by h because they act on the reference cube.
+    static const char* const kAxis[] = {"x", "y", "z"};
+    const AxisBox& b = *task.bounds;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        AxisBox slab{b.min - Vec3::Constant(wall), b.max + Vec3::Constant(wall)};
+        if (side == 0)
+          slab.max[axis] = b.min[axis];
+        else
+          slab.min[axis] = b.max[axis];
+        // The y walls of a planar task only keep the robot in the extrusion slab; they are not C-space faces
+        // (docs/cspace.md), so they get no friction.
+        const bool phantom = task.dimension == 2 && axis == 1;
+        const std::string name = std::string("wall_") + kAxis[axis] + (side == 0 ? "min" : "max");
+        w.box(name, phantom ? "planar extrusion limit, frictionless" : "bounds", slab, h,
+              phantom ? 0.0 : task.friction, 0, kReferenceBit, kWallRgba, in2);
+      }
+  }
+
+  out << "    <body name=\"robot\">\n"
+      << "      <joint name=\"x\" axis=\"1 0 0\"/>\n"
+      << "      <joint name=\"y\" axis=\"0 1 0\"/>\n"
+      << "      <joint name=\"z\" axis=\"0 0 1\"/>\n";
+  // Only translations exist, so the rotational inertia is never used; MuJoCo still wants it positive.
+  const double inertia = options.robot_mass * (0.1 * scale * s) * (0.1 * scale * s);
+  out << "      <inertial pos=\"0 0 0\" mass=\"" << num(options.robot_mass) << "\" diaginertia=\""
+      << num(inertia) << " " << num(inertia) << " " << num(inertia) << "\"/>\n";
+  const AxisBox cube{Vec3::Constant(-h), Vec3::Constant(h)};
+  if (cspace_form) {
+    w.box("robot_cube", "the C-space point, thickened to a cube of half size h", cube, 0, 0,
+          kPartBit | kReferenceBit, 0, kRobotRgba, in3);
+  } else {
+    for (std::size_t i = 0; i < task.robot.size(); ++i) {
+      const ConvexPart& p = task.robot[i];
+      const std::string name = "robot" + std::to_string(i);
+      if (p.shape == ConvexPart::Shape::kBox)
+        w.box(name, p.key, p.box, 0, 0, kPartBit, 0, kRobotRgba, in3);
+      else
+        w.mesh_geom(name, p.key, 0, kPartBit, 0, kRobotRgba, in3);
+    }
+    if (task.bounds)
+      w.box("reference",
+            "reference point (frame origin), thickened to a cube of half size h; meets the walls only", cube,
+            0, 0, kReferenceBit, 0, kReferenceRgba, in3);
+  }
+  out << "    </body>\n  </worldbody>\n";
+
+  // The start region's centroid (on the contact surface) as a keyframe, so viewers open at a valid state.
+  if (!task.start.points.empty()) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& p : task.start.points) c += p;
+    c /= static_cast<double>(task.start.points.size());
+    out << "  <keyframe>\n    <key name=\"start\" qpos=\"" << vec(c * s) << "\"/>\n  </keyframe>\n";
+  }
+  out << "</mujoco>\n";
+  return out.str();
+}
+
+void write_mjcf(const LoadedTask& task, const std::filesystem::path& file, const MjcfOptions& options) {
+  const std::string xml = mjcf_xml(task, options);
+  std::ofstream stream(file, std::ios::binary | std::ios::trunc);
+  if (!stream) {
+    const std::error_code ec(errno, std::generic_category());
+    throw std::runtime_error("cannot write MJCF file '" + file.string() + "': " + ec.message());
+  }
+  stream << xml;
+  stream.close();
+  if (!stream) throw std::runtime_error("cannot write MJCF file '" + file.string() + "': write failed");
+}
+
+}  // namespace cmt

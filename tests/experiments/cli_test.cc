@@ -1,0 +1,122 @@
+// End-to-end tests of the cmt program: exit statuses and the JSON fields of contracts.md.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::string task(const std::string& name) {
+  return std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml";
+}
+
+TEST(CmtInfo, CubeHasBuckleyCounts) {
+  const Result r = run("info " + task("cube") + " --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["faces"], 6);
+  EXPECT_EQ(j["edges"], 12);
+  EXPECT_EQ(j["vertices"], 8);
+  EXPECT_EQ(j["atoms"], 26);
+}
+
+TEST(CmtInfo, HoleHasBuckleyCounts) {
+  const Result r = run("info " + task("hole") + " --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["faces"], 14);
+  EXPECT_EQ(j["edges"], 32);
+  EXPECT_EQ(j["vertices"], 20);
+  EXPECT_EQ(j["atoms"], 66);
+}
+
+TEST(CmtInfo, EveryBuiltInTaskLoads) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(CMT_SOURCE_DIR) + "/models/tasks")) {
+    if (entry.path().extension() != ".yaml") continue;
+    const Result r = run("info " + entry.path().string() + " --json");
+    EXPECT_EQ(r.status, 0) << entry.path();
+    const auto j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << entry.path();
+    EXPECT_GT(j["faces"].get<int>(), 0) << entry.path();
+    EXPECT_EQ(j["atoms"].get<int>(),
+              j["faces"].get<int>() + j["edges"].get<int>() + j["vertices"].get<int>());
+  }
+}
+
+TEST(CmtInfo, AtomListHasGeometry) {
+  const Result r = run("info " + task("hole") + " --atoms --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["atom_list"].size(), 66u);
+  int faces = 0;
+  for (const auto& a : j["atom_list"]) {
+    ASSERT_TRUE(a.contains("id") && a.contains("kind") && a.contains("points"));
+    if (a["kind"] == "face") {
+      ++faces;
+      ASSERT_TRUE(a.contains("normal"));
+      EXPECT_GE(a["points"].size(), 3u);
+    } else if (a["kind"] == "edge") {
+      EXPECT_EQ(a["points"].size(), 2u);
+    } else {
+      EXPECT_EQ(a["kind"], "vertex");
+      EXPECT_EQ(a["points"].size(), 1u);
+    }
+  }
+  EXPECT_EQ(faces, 14);
+  // The hole bottom (z = -2, normal +z) is one face, found by its coordinates.
+  bool bottom = false;
+  for (const auto& a : j["atom_list"])
+    if (a["kind"] == "face" && a["normal"][2] == 1.0 && a["points"][0][2] == -2.0) bottom = true;
+  EXPECT_TRUE(bottom);
+}
+
+TEST(CmtErrors, BadInputExitsTwoWithJsonError) {
+  const std::string path = testing::TempDir() + "/bad_task.yaml";
+  std::ofstream(path) << "name: bad\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 2.0, theta_f: 0}\n";
+  const Result r = run("info " + path + " --json");
+  EXPECT_EQ(r.status, 2);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["error"]["file"], path);
+  EXPECT_EQ(j["error"]["key"], "uncertainty.theta_v");
+}
+
+TEST(CmtErrors, MissingFileAndUsage) {
+  EXPECT_EQ(run("info /nonexistent.yaml --json").status, 2);
+  EXPECT_EQ(run("no-such-command").status, 2);
+  EXPECT_EQ(run("info").status, 2);
+}
+
+TEST(CmtExportMjcf, WritesAScene) {
+  const std::string out = testing::TempDir() + "/hole_scene.xml";
+  const Result r = run("export-mjcf " + task("hole") + " -o " + out + " --json");
+  ASSERT_EQ(r.status, 0);
+  std::ifstream in(out);
+  const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(xml.find("<mujoco"), std::string::npos);
+  EXPECT_NE(xml.find("slide"), std::string::npos);
+  EXPECT_EQ(run("export-mjcf " + task("hole") + " -o /nonexistent_dir/x.xml").status, 2);
+}
+
+}  // namespace
