@@ -1,9 +1,12 @@
 #include "experiments/info_command.h"
 
 #include <algorithm>
+#include <chrono>
+#include <iostream>
 #include <sstream>
 
 #include "experiments/cli_output.h"
+#include "experiments/command.h"
 
 namespace cmt {
 namespace {
@@ -95,6 +98,28 @@ std::string info_text(const LoadedTask& lt) {
     << "  atoms: " << c.atom_count() << " = " << c.faces().size() << " faces + " << c.edges().size()
     << " edges + " << c.vertices().size() << " vertices\n";
   return s.str();
+}
+
+void add_info_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task;
+    bool atoms = false;
+  };
+  auto options = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("info", "Configuration-space atoms of a task (faces, edges, vertices)");
+  cmd->add_option("TASK", options->task, "task YAML file")->required();
+  cmd->add_flag("--atoms", options->atoms, "also list every atom's geometry");
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([options, &state] {
+    const auto start = std::chrono::steady_clock::now();
+    const auto task = load_task(options->task);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (state.json)
+      print_json(info_json(*task, options->atoms, seconds));
+    else
+      std::cout << info_text(*task);
+    state.exit_status = kExitSuccess;
+  });
 }
 
 }  // namespace cmt

@@ -1,0 +1,18 @@
+// Each cmt subcommand lives in its own file and registers itself on the CLI11 app with an add_*_command
+// function; its callback runs the command and stores the exit status here. Errors are thrown (TaskError for
+// bad input) and turned into exit status 2 by cmt_main.cc.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace cmt {
+
+struct CommandState {
+  bool json = false;    // --json: print exactly one JSON object on stdout
+  int exit_status = 2;  // set by the command that ran
+};
+
+void add_info_command(CLI::App& app, CommandState& state);
+void add_export_mjcf_command(CLI::App& app, CommandState& state);
+
+}  // namespace cmt
