@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 
 namespace cmt {
@@ -58,11 +59,26 @@ struct FrictionCone::Polyhedral {
   bool full = false;                            // the cone is all of its span
   std::vector<std::array<Vec3, 3>> facets;      // 3-D: hull facets whose planes pass through 0
   std::vector<CGAL::Orientation> facet_inside;  // the orientation sign of the cone's interior for each facet
+  std::vector<Vec3> extreme;                    // extreme rays (all generators when the span is not 3-D)
 
   Vec3 plane_a, plane_b;    // 2-D: the span
   std::vector<Vec3> wedge;  // 2-D: extreme rays (1 or 2) when not full
 
-  explicit Polyhedral(std::vector<Vec3> g) : gens(std::move(g)) {
+  // `circular_axis` non-zero: the generators are one circle's rim in order about that axis, so the cone's
+  // facets are the consecutive pairs and no hull is needed.
+  Polyhedral(std::vector<Vec3> g, const Vec3& circular_axis) : gens(std::move(g)) {
+    if (circular_axis != Vec3::Zero() && gens.size() >= 3) {
+      dim = 3;
+      const P3 o(0, 0, 0);
+      for (std::size_t k = 0; k < gens.size(); ++k) {
+        const Vec3& a = gens[k];
+        const Vec3& b = gens[(k + 1) % gens.size()];
+        facets.push_back({Vec3::Zero(), a, b});
+        facet_inside.push_back(CGAL::orientation(o, pt(a), pt(b), pt(circular_axis)));
+      }
+      extreme = gens;
+      return;
+    }
     const P3 o(0, 0, 0);
     // Span dimension.
     int ia = -1, ib = -1, ic = -1;
@@ -152,6 +168,15 @@ struct FrictionCone::Polyhedral {
       }
     }
     full = facets.empty();
+    // Extreme rays: the hull vertices other than 0 that lie on a facet through 0.
+    for (auto v = hull.vertices_begin(); v != hull.vertices_end(); ++v) {
+      const P3& q = v->point();
+      if (q == o) continue;
+      bool on = false;
+      for (const auto& f : facets)
+        on = on || CGAL::orientation(pt(f[0]), pt(f[1]), pt(f[2]), q) == CGAL::COPLANAR;
+      if (on) extreme.push_back(Vec3(q.x(), q.y(), q.z()));
+    }
   }
 
   bool contains(const Vec3& d) const {
@@ -183,9 +208,30 @@ struct FrictionCone::Polyhedral {
     return true;
   }
 
+  // Angle from d (outside) to a ray, a line, a planar wedge or a plane: the nearest direction is the
+  // projection onto the span when it falls inside the wedge, else an extreme ray.
+  double lower_dim_angle(const Vec3& d) const {
+    const Vec3 u = d.normalized();
+    auto angle = [](const Vec3& a, const Vec3& b) {
+      return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
+    };
+    if (dim == 0) return std::numbers::pi;
+    if (dim == 1) return full ? std::min(angle(u, wedge[0]), angle(u, -wedge[0])) : angle(u, wedge[0]);
+    const Vec3 n = plane_a.cross(plane_b).normalized();
+    const Vec3 proj = u - u.dot(n) * n;
+    const double off_plane = std::asin(std::clamp(std::abs(u.dot(n)), 0.0, 1.0));
+    if (full || proj.norm() == 0) return off_plane;
+    // Inside the wedge (between wedge[0] and wedge[1], counter-clockwise about n) in the plane?
+    const Vec3 a = wedge[0], b = wedge[1];
+    const bool inside = a.cross(proj).dot(n) >= 0 && proj.cross(b).dot(n) >= 0;
+    if (inside) return off_plane;
+    return std::min(angle(u, a), angle(u, b));
+  }
+
   // Lower bound on the angle from d to this cone's boundary: the largest violated (outside) or smallest
   // satisfied (inside) facet angle. Only meaningful for 3-D cones; other cases return 0.
   double facet_angle(const Vec3& d, bool outside) const {
+    if (outside && dim < 3) return lower_dim_angle(d);
     if (dim != 3 || full) return outside ? 0 : -std::numeric_limits<double>::infinity();
     const Vec3 u = d.normalized();
     double best = outside ? 0 : std::numeric_limits<double>::infinity();
@@ -209,8 +255,24 @@ FrictionCone FrictionCone::face(const Vec3& normal, double mu) {
   return sum({CircularCone{normal.normalized(), std::atan(mu)}});
 }
 
+struct FrictionCone::Lazy {
+  std::vector<Vec3> gens;
+  Vec3 circular_axis = Vec3::Zero();
+  std::once_flag once;
+  std::unique_ptr<Polyhedral> built;
+  const Polyhedral& get() {
+    std::call_once(once, [this] { built = std::make_unique<Polyhedral>(gens, circular_axis); });
+    return *built;
+  }
+};
+
+const FrictionCone::Polyhedral& FrictionCone::inner() const { return inner_->get(); }
+const FrictionCone::Polyhedral& FrictionCone::outer() const { return outer_->get(); }
+
 FrictionCone FrictionCone::sum(std::vector<CircularCone> generators) {
   FrictionCone c;
+  for (const CircularCone& g : generators)
+    c.forced_full_ = c.forced_full_ || g.half_angle >= std::numbers::pi / 2;
   c.generators_ = std::move(generators);
   std::vector<Vec3> inner, outer;
   const double stretch = 1.0 / std::cos(std::numbers::pi / kRimGenerators);
@@ -232,12 +294,79 @@ FrictionCone FrictionCone::sum(std::vector<CircularCone> generators) {
     }
     c.max_error_ = std::max(c.max_error_, std::atan(t * stretch * (1 + 1e-9)) - g.half_angle);
   }
-  c.inner_ = std::make_shared<Polyhedral>(inner);
-  c.outer_ = std::make_shared<Polyhedral>(outer);
+  c.inner_ = std::make_shared<Lazy>();
+  c.outer_ = std::make_shared<Lazy>();
+  c.inner_->gens = std::move(inner);
+  c.outer_->gens = std::move(outer);
+  if (c.generators_.size() == 1 && c.generators_[0].half_angle > 0) {
+    c.inner_->circular_axis = c.outer_->circular_axis = c.generators_[0].axis;
+  }
   return c;
 }
 
-bool FrictionCone::is_full() const { return inner_ && inner_->dim == 3 && inner_->full; }
+bool FrictionCone::is_full(bool outer_cone) const {
+  if (forced_full_) return true;
+  if (!inner_) return false;
+  const Polyhedral& p = outer_cone ? outer() : inner();
+  return p.dim == 3 && p.full;
+}
+
+FrictionCone FrictionCone::widened(double angle) const {
+  std::vector<CircularCone> g = generators_;
+  bool empty = empty_, full = forced_full_;
+  for (CircularCone& c : g) {
+    c.half_angle += angle;
+    if (c.half_angle < 0) empty = true;
+    if (c.half_angle >= std::numbers::pi / 2) full = true;
+    c.half_angle = std::clamp(c.half_angle, 0.0, std::numbers::pi / 2);
+  }
+  FrictionCone out = sum(std::move(g));
+  out.empty_ = empty;
+  out.forced_full_ = full && !empty;
+  return out;
+}
+
+const std::vector<Vec3>& FrictionCone::rays(bool outer) const { return outer ? outer_->gens : inner_->gens; }
+
+const std::vector<Vec3>& FrictionCone::extreme_rays(bool outer) const {
+  const Polyhedral& p = outer ? this->outer() : inner();
+  return p.dim == 3 ? p.extreme : p.gens;
+}
+
+bool FrictionCone::contains_cone(const CircularCone& c) const {
+  if (empty_) return false;
+  if (forced_full_)
+    return false;  // a widened, non-convex cone: containment is not decided (sound for "must")
+  if (circular()) {
+    const CircularCone& g = generators_[0];
+    return g.signed_angle(c.axis) + c.half_angle < -kCircularRimSlack;
+  }
+  const Polyhedral& p = inner();
+  if (p.dim == 3 && p.full) return true;
+  if (p.dim < 3) return c.half_angle == 0 && p.contains(c.axis);
+  const Vec3 u = c.axis.normalized();
+  const double need = std::sin(c.half_angle) + kCircularRimSlack;
+  for (std::size_t i = 0; i < p.facets.size(); ++i) {
+    const auto& f = p.facets[i];
+    Vec3 n = (f[1] - f[0]).cross(f[2] - f[0]).normalized();
+    if (p.facet_inside[i] != CGAL::POSITIVE) n = -n;
+    if (!(n.dot(u) >= need)) return false;
+  }
+  return p.contains(u);
+}
+
+double FrictionCone::angle_lower_bound(const Vec3& d) const {
+  if (empty_) return std::numbers::pi;
+  if (forced_full_) return 0;
+  if (circular()) return std::max(0.0, generators_[0].signed_angle(d));
+  if (outer().contains(d)) return 0;
+  return std::max(0.0, outer().facet_angle(d, /*outside=*/true));
+}
+
+bool FrictionCone::may_intersect_cone(const CircularCone& c) const {
+  if (empty_) return false;
+  return angle_lower_bound(c.axis) <= c.half_angle + kCircularRimSlack;
+}
 
 ConeMembership FrictionCone::classify(const Vec3& d) const {
   if (circular()) {
@@ -246,8 +375,8 @@ ConeMembership FrictionCone::classify(const Vec3& d) const {
     if (a > kCircularRimSlack) return ConeMembership::kOutside;
     return ConeMembership::kBoundary;
   }
-  if (inner_->contains(d)) return ConeMembership::kInside;
-  if (!outer_->contains(d)) return ConeMembership::kOutside;
+  if (inner().contains(d)) return ConeMembership::kInside;
+  if (!outer().contains(d)) return ConeMembership::kOutside;
   return ConeMembership::kBoundary;
 }
 
@@ -255,9 +384,9 @@ double FrictionCone::signed_angle(const Vec3& d) const {
   if (circular()) return generators_[0].signed_angle(d);
   switch (classify(d)) {
     case ConeMembership::kInside:
-      return inner_->facet_angle(d, /*outside=*/false);
+      return inner().facet_angle(d, /*outside=*/false);
     case ConeMembership::kOutside:
-      return outer_->facet_angle(d, /*outside=*/true);
+      return outer().facet_angle(d, /*outside=*/true);
     case ConeMembership::kBoundary:
       return 0;
   }

@@ -119,4 +119,39 @@ TEST(CmtExportMjcf, WritesAScene) {
   EXPECT_EQ(run("export-mjcf " + task("hole") + " -o /nonexistent_dir/x.xml").status, 2);
 }
 
+TEST(CmtSticking, ClassifiesEveryAtom) {
+  const Result r = run("sticking " + task("hole") + " --motion p2 --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["atoms"].size(), 66u);
+  for (const auto& a : j["atoms"]) {
+    ASSERT_TRUE(a.contains("atom") && a.contains("kind") && a.contains("class"));
+    const std::string c = a["class"];
+    EXPECT_TRUE(c == "must" || c == "may" || c == "never") << c;
+  }
+  // Spring motions report each face's weak and strong sticking polygons.
+  ASSERT_EQ(j["faces"].size(), 14u);
+  EXPECT_TRUE(j["faces"][0].contains("weak") && j["faces"][0].contains("strong"));
+  // p2 = (0, 2, -1) lies 1 behind the far hole wall y = 1 (normal -y), halfway down: the robot may stick there.
+  int wall = -1;
+  const auto info = nlohmann::json::parse(run("info " + task("hole") + " --atoms --json").out);
+  for (const auto& a : info["atom_list"])
+    if (a["kind"] == "face" && a["normal"][1] == -1.0 && a["points"][0][1] == 1.0) wall = a["id"];
+  ASSERT_GE(wall, 0);
+  EXPECT_NE(j["atoms"][wall]["class"], "never");
+}
+
+TEST(CmtSticking, DamperReportsSlidingCones) {
+  const Result r = run("sticking " + task("two_blocks") + " --motion v1 --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "damper");
+  // v1 points straight down with theta_v = .25 > atan(.25) = .245: wherever it presses, some admissible velocity
+  // leaves the friction cone (face cones, and summed cones toward their open side, have margin .245 there), so no
+  // atom must stick.
+  for (const auto& f : j["faces"]) EXPECT_TRUE(f.contains("sliding"));
+  EXPECT_EQ(j["counts"]["must"], 0);
+  EXPECT_EQ(run("sticking " + task("hole") + " --motion nope --json").status, 2);
+}
+
 }  // namespace

@@ -1,0 +1,14 @@
+// `cmt sticking TASK --motion NAME --json` (contracts.md): per atom {atom, kind, class} with class
+// must/may/never under the motion's error bounds; damper motions add each face's sliding cone, spring motions
+// each face's weak and strong sticking configurations (Buckley Fig 3.16) as polygons.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "models/loaded_task.h"
+
+namespace cmt {
+
+nlohmann::json sticking_json(const LoadedTask& task, const Motion& motion);
+
+}  // namespace cmt

@@ -1,0 +1,139 @@
+#include "verifier/sensing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "models/polygon_distance.h"
+#include "verifier/atom_cone.h"
+
+namespace cmt {
+namespace {
+
+// Closest distance between segments [p0, p1] and [q0, q1] (Ericson, Real-Time Collision Detection §5.1.9).
+double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a <= 0 && e <= 0) return r.norm();
+  if (a <= 0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p0 + s * d1) - (q0 + t * d2)).norm();
+}
+
+// Does segment [a, b] cross the convex polygon (counter-clockwise about n)?
+bool segment_crosses_polygon(const Vec3& a, const Vec3& b, const std::vector<Vec3>& poly, const Vec3& n) {
+  const double da = n.dot(a - poly[0]), db = n.dot(b - poly[0]);
+  if ((da > 0 && db > 0) || (da < 0 && db < 0) || da == db) return false;
+  const Vec3 x = a + (b - a) * (da / (da - db));
+  return distance_to_convex_polygon(x, poly, n) == 0;
+}
+
+// Distance between two convex atoms given as point lists (1 point, 2 points, or a polygon with its normal).
+double convex_distance(const std::vector<Vec3>& A, const Vec3& na, const std::vector<Vec3>& B,
+                       const Vec3& nb) {
+  auto sides = [](const std::vector<Vec3>& P) {
+    std::vector<std::pair<Vec3, Vec3>> s;
+    if (P.size() == 1) s.push_back({P[0], P[0]});
+    if (P.size() == 2) s.push_back({P[0], P[1]});
+    if (P.size() >= 3)
+      for (std::size_t i = 0; i < P.size(); ++i) s.push_back({P[i], P[(i + 1) % P.size()]});
+    return s;
+  };
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& [a0, a1] : sides(A))
+    for (const auto& [b0, b1] : sides(B)) best = std::min(best, segment_segment_distance(a0, a1, b0, b1));
+  if (B.size() >= 3)
+    for (const Vec3& p : A) best = std::min(best, distance_to_convex_polygon(p, B, nb));
+  if (A.size() >= 3)
+    for (const Vec3& p : B) best = std::min(best, distance_to_convex_polygon(p, A, na));
+  if (B.size() >= 3)
+    for (const auto& [a0, a1] : sides(A))
+      if (segment_crosses_polygon(a0, a1, B, nb)) return 0;
+  return best;
+}
+
+}  // namespace
+
+Polyhedron sensed_positions(const CSpace& cspace, int atom_id, double eps_s) {
+  const std::vector<Vec3> pts = atom_points(cspace, atom_id);
+  std::vector<Vec3> dirs;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x || y || z) dirs.push_back(Vec3(x, y, z).normalized());
+  for (int f : atom_faces(cspace, atom_id)) {
+    const Face& face = cspace.faces()[f];
+    dirs.push_back(face.normal);
+    dirs.push_back(-face.normal);
+  }
+  if (pts.size() >= 2)
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vec3 e = pts[(i + 1) % pts.size()] - pts[i];
+      for (int f : atom_faces(cspace, atom_id)) {
+        const Vec3 m = e.cross(cspace.faces()[f].normal);
+        if (m.norm() > 0) {
+          dirs.push_back(m.normalized());
+          dirs.push_back(-m.normalized());
+        }
+      }
+    }
+  Polyhedron out;
+  out.kind = Polyhedron::Kind::kConvex;
+  for (const Vec3& u : dirs) {
+    double h = -std::numeric_limits<double>::infinity();
+    for (const Vec3& p : pts) h = std::max(h, u.dot(p));
+    out.halfspaces.push_back({u, h + eps_s});
+  }
+  return out;
+}
+
+FrictionCone sensed_forces(const CSpace& cspace, int atom_id, double theta_f) {
+  return atom_friction_cone(cspace, atom_id).widened(theta_f);
+}
+
+double atom_distance(const CSpace& cspace, int a, int b) {
+  auto normal = [&](int id) {
+    return cspace.atom_kind(id) == AtomKind::kFace ? cspace.faces()[id].normal : Vec3(Vec3::UnitZ());
+  };
+  return convex_distance(atom_points(cspace, a), normal(a), atom_points(cspace, b), normal(b));
+}
+
+double force_angle_lower_bound(const CSpace& cspace, int a, int b) {
+  // Smallest angle between two convex cones, if disjoint, is attained at an extreme ray of one of them
+  // (spherical convex polygons); the outer cones' rays bound it from below.
+  const FrictionCone ca = atom_friction_cone(cspace, a), cb = atom_friction_cone(cspace, b);
+  if (ca.is_full(/*outer=*/true) || cb.is_full(/*outer=*/true)) return 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vec3& r : ca.rays(/*outer=*/true)) best = std::min(best, cb.angle_lower_bound(r));
+  for (const Vec3& r : cb.rays(/*outer=*/true)) best = std::min(best, ca.angle_lower_bound(r));
+  return best;
+}
+
+bool disambiguable(const CSpace& cspace, int a, int b, double eps_s, double theta_f) {
+  if (a == b) return false;
+  if (atom_distance(cspace, a, b) > 2 * eps_s) return true;
+  const std::vector<int> fa = atom_faces(cspace, a), fb = atom_faces(cspace, b);
+  for (int f : fa)
+    if (std::find(fb.begin(), fb.end(), f) != fb.end()) return false;  // §6.4.1: shared face
+  return force_angle_lower_bound(cspace, a, b) > 2 * theta_f;
+}
+
+}  // namespace cmt

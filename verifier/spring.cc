@@ -1,0 +1,206 @@
+#include "verifier/spring.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "models/friction_cone.h"
+#include "verifier/atom_cone.h"
+#include "verifier/convex_polygon.h"
+
+namespace cmt {
+namespace {
+
+constexpr double kHalfPi = std::numbers::pi / 2;
+// Sides of the polygons that approximate sticking disks on a face.
+constexpr int kDiskPolygonSides = 64;
+
+// Unit vectors u, w spanning the plane of a face.
+void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
+  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  *u = n.cross(helper).normalized();
+  *w = n.cross(*u);
+}
+
+std::vector<Vec3> negated(const std::vector<Vec3>& v) {
+  std::vector<Vec3> out;
+  for (const Vec3& x : v) out.push_back(-x);
+  return out;
+}
+
+// Regular polygon about `center` in the face plane: circumscribed about the circle of radius r when outer,
+// else inscribed.
+std::vector<Vec3> disk_polygon(const Vec3& center, const Vec3& n, double r, bool outer) {
+  Vec3 u, w;
+  face_frame(n, &u, &w);
+  const double R = outer ? r / std::cos(std::numbers::pi / kDiskPolygonSides) * (1 + 1e-12) : r;
+  std::vector<Vec3> out;
+  for (int k = 0; k < kDiskPolygonSides; ++k) {
+    const double a = 2 * std::numbers::pi * k / kDiskPolygonSides;
+    out.push_back(center + R * (std::cos(a) * u + std::sin(a) * w));
+  }
+  return out;
+}
+
+Polyhedron face_weak_concave(const Face& face, double psi, double eps_s) {
+  // Positions that may stick: all but those p with p − x inside cone(n, pi − psi) for every x in F (then
+  // every admissible force points away from the face). That set is ∩_{vertices x} (x + C), C convex, taken
+  // with an inner polyhedral C so the complement stays an over-approximation; eroded by eps_s (sensing).
+  const FrictionCone inner = FrictionCone::face(face.normal, std::tan(std::numbers::pi - psi));
+  Polyhedron keep_out;
+  keep_out.kind = Polyhedron::Kind::kConvex;
+  for (const Vec3& x : face.polygon) {
+    const Polyhedron c = hull_plus_cone({x}, inner.extreme_rays(/*outer=*/false));
+    keep_out.halfspaces.insert(keep_out.halfspaces.end(), c.halfspaces.begin(), c.halfspaces.end());
+  }
+  keep_out = keep_out.offset(-eps_s);
+  keep_out.kind = Polyhedron::Kind::kComplement;
+  return keep_out;
+}
+
+}  // namespace
+
+const char* stick_class_name(StickClass c) {
+  switch (c) {
+    case StickClass::kMust:
+      return "must";
+    case StickClass::kMay:
+      return "may";
+    case StickClass::kNever:
+      return "never";
+  }
+  return "may";
+}
+
+double eps_t(const Uncertainty& u) {
+  if (u.theta_v == 0) return u.eps_p;
+  const double t_t = u.theta_v / std::tan(u.theta_v);
+  return u.eps_p + u.step * std::exp(-t_t) * std::sin(u.theta_v);
+}
+
+double eps_o(const Uncertainty& u) {
+  if (u.theta_v == 0) return u.eps_p + u.step + 2 * u.eps_p;
+  const double t_o = (u.theta_v + kHalfPi) / std::tan(u.theta_v);
+  return u.eps_p + (u.step + 2 * u.eps_p) * (1 + std::exp(-t_o) * std::sin(u.theta_v));
+}
+
+SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id, const Uncertainty& u) {
+  SpringStickingRegions out;
+  const FrictionCone cone = atom_friction_cone(cspace, atom_id);
+  const std::vector<Vec3> points = atom_points(cspace, atom_id);
+  const AtomKind kind = cspace.atom_kind(atom_id);
+
+  // Weak region.
+  const FrictionCone wide = cone.widened(u.theta_v);
+  if (kind == AtomKind::kFace && cone.generators()[0].half_angle + u.theta_v >= kHalfPi) {
+    const double psi = cone.generators()[0].half_angle + u.theta_v;
+    out.weak = psi >= std::numbers::pi ? Polyhedron::everything()
+                                       : face_weak_concave(cspace.faces()[atom_id], psi, u.eps_s);
+  } else if (wide.is_full(/*outer=*/true)) {
+    out.weak = Polyhedron::everything();  // sound: a non-convex summed cone is not represented
+  } else {
+    out.weak = hull_plus_cone(points, negated(wide.extreme_rays(/*outer=*/true))).offset(u.eps_s);
+  }
+
+  // Strong region.
+  const double margin = eps_t(u);
+  if (kind == AtomKind::kFace) {
+    const Face& f = cspace.faces()[atom_id];
+    const double phi = cone.generators()[0].half_angle;
+    if (phi <= u.theta_v) {
+      out.strong = Polyhedron::nothing();
+    } else {
+      const double depth = u.eps_s + (margin + u.eps_s) / std::tan(phi - u.theta_v);
+      out.strong.kind = Polyhedron::Kind::kConvex;
+      out.strong.halfspaces.push_back({f.normal, f.offset - depth});
+      const std::size_t k = f.polygon.size();
+      for (std::size_t i = 0; i < k; ++i) {
+        const Vec3 edge = f.polygon[(i + 1) % k] - f.polygon[i];
+        const Vec3 outward = edge.cross(f.normal).normalized();  // CCW about n: edge x n points out of F
+        out.strong.halfspaces.push_back({outward, outward.dot(f.polygon[i]) - margin});
+      }
+    }
+  } else {
+    const FrictionCone narrow = cone.narrowed(u.theta_v);
+    if (narrow.empty() || narrow.generators().empty()) {
+      out.strong = Polyhedron::nothing();
+    } else {
+      // K_s ⊖ B ⊇ (C_1 ⊖ B) + C_2 + ...: shift by eps_s / sin(alpha) along the widest narrowed generator.
+      const CircularCone* widest = &narrow.generators()[0];
+      for (const CircularCone& g : narrow.generators())
+        if (g.half_angle > widest->half_angle) widest = &g;
+      if (widest->half_angle <= 0) {
+        out.strong = Polyhedron::nothing();
+      } else {
+        const Vec3 shift = -widest->axis * (u.eps_s / std::sin(widest->half_angle));
+        std::vector<Vec3> shifted;
+        for (const Vec3& p : points) shifted.push_back(p + shift);
+        out.strong = narrow.is_full()
+                         ? Polyhedron::everything()
+                         : hull_plus_cone(shifted, negated(narrow.extreme_rays(/*outer=*/false)));
+        // Against rounding in the constructed normals: pull every plane in by a hair (kept sound).
+        if (out.strong.kind == Polyhedron::Kind::kConvex)
+          out.strong = out.strong.offset(-1e-12 * cspace.scale());
+      }
+    }
+  }
+  return out;
+}
+
+StickClass classify_spring(const SpringStickingRegions& regions, const Vec3& commanded) {
+  if (regions.strong.contains(commanded)) return StickClass::kMust;
+  if (regions.weak.contains(commanded)) return StickClass::kMay;
+  return StickClass::kNever;
+}
+
+FaceStickingConfigurations face_sticking_configurations(const Face& face, const Vec3& p,
+                                                        const Uncertainty& u) {
+  FaceStickingConfigurations out;
+  const double phi = std::atan(face.friction);
+  const double h = face.offset - face.normal.dot(p);  // depth of p below the face plane (negative: above)
+  const Vec3 p_proj = p + h * face.normal;
+  // Weak: x with angle(p − x̂, −n) <= phi + theta_v for some |x̂ − x| <= eps_s, i.e. x within eps_s of the cone
+  // p + cone(n, psi). On the plane that is a disk about p' whose radius solves dist(x, cone) = eps_s.
+  const double psi = phi + u.theta_v;
+  double r_weak = -1;
+  if (psi >= kHalfPi) {
+    r_weak = 1e300;  // concave case: the whole face may stick (sound over-approximation)
+  } else {
+    auto dist_to_cone = [&](double rho) {  // x at radius rho from p' on the plane
+      const double along = h, across = rho;
+      const double angle = std::atan2(across, along);  // from the cone axis +n
+      const double len = std::hypot(across, along);
+      if (angle <= psi) return 0.0;
+      if (angle >= psi + kHalfPi) return len;
+      return len * std::sin(angle - psi);
+    };
+    if (dist_to_cone(0) <= u.eps_s) {
+      double lo = 0, hi = 1;
+      while (dist_to_cone(hi) <= u.eps_s) hi *= 2;
+      for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (dist_to_cone(mid) <= u.eps_s ? lo : hi) = mid;
+      }
+      r_weak = hi;  // the upper end of the bracket: outer
+    }
+  }
+  if (r_weak >= 0) {
+    if (r_weak > 1e299)
+      out.weak = face.polygon;
+    else
+      out.weak =
+          clip_convex_polygon(face.polygon, disk_polygon(p_proj, face.normal, r_weak, true), face.normal);
+  }
+  // Strong: B(x, eps_s) inside p + cone(n, phi − theta_v), i.e. x in p + (eps_s / sin(phi − theta_v)) n +
+  // that cone: a disk of radius (h − eps_s / sin(phi − theta_v)) tan(phi − theta_v).
+  const double alpha = phi - u.theta_v;
+  if (alpha > 0) {
+    const double r_strong = (h - u.eps_s / std::sin(alpha)) * std::tan(alpha);
+    if (r_strong > 0)
+      out.strong =
+          clip_convex_polygon(face.polygon, disk_polygon(p_proj, face.normal, r_strong, false), face.normal);
+  }
+  return out;
+}
+
+}  // namespace cmt
