@@ -131,5 +131,21 @@ TEST(SlidingCone, LeavingTheFaceBoundsTheCone) {
   EXPECT_FALSE(sliding_cone(kUp, 0.25, from_down(2.0), 0.25).possible);
 }
 
+TEST(DamperStick, ConvexEdgeOfTheHoleRim) {
+  // The rim edge between the top face (+z) and the hole wall (+x): summed cone as for a concave edge, mu =
+  // .48. Pushing diagonally into the obstacle corner, −(1,0,1), with theta_v = .25: must (the quarter-plane
+  // between the normals has margin pi/4 + phi in-plane and more than theta_v out of plane: for mu = .48 the
+  // bisector's out-of-plane reach is atan((2 mu / sqrt(1 − mu^2)) / sqrt 2) = .6587). Straight down (only
+  // into the top face) with theta_v = .5 > phi = .4475: the margin toward −x is phi, so may.
+  const double phi = std::atan(0.48);
+  const FrictionCone rim = FrictionCone::sum({{kUp, phi}, {Vec3::UnitX(), phi}});
+  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.25), StickClass::kMust);
+  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.64), StickClass::kMust);
+  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.68), StickClass::kMay);
+  EXPECT_EQ(classify_damper(rim, -kUp, 0.5), StickClass::kMay);
+  // Sliding off the rim into the hole (velocity +x, down a little): leaves the cone entirely.
+  EXPECT_EQ(classify_damper(rim, Vec3(1, 0, -0.2).normalized(), 0.25), StickClass::kNever);
+}
+
 }  // namespace
 }  // namespace cmt

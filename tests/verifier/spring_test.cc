@@ -135,5 +135,20 @@ TEST_F(HoleBottom, ConcaveEdgeRegions) {
   EXPECT_EQ(classify_spring(r, Vec3(0, 0, -1)), StickClass::kNever);
 }
 
+TEST_F(HoleBottom, ConvexRimEdge) {
+  // The hole rim along y at x = -1, z = 0: top face (normal +z, x < -1) and hole wall (normal +x). Its cone
+  // is the same sum as a concave edge's (cones depend only on normals), but the free space wraps around it.
+  const CSpace& c = task_->cspace;
+  const int rim = c.nearest_atom(Vec3(-1, 0, 0), 1e-9);
+  ASSERT_EQ(c.atom_kind(rim), AtomKind::kEdge);
+  ASSERT_EQ(c.edges()[c.atom_index(rim)].shape, EdgeShape::kConvex);
+  const auto r = spring_sticking_regions(c, rim, task_->task.uncertainty);
+  // Deep into the obstacle corner along −(1,0,1): inside the narrowed sum (margin ≥ phi − theta_v around each
+  // normal and the quarter-plane between them), well beyond the eps_s shift of 1.02: must.
+  EXPECT_EQ(classify_spring(r, Vec3(-1, 0, 0) - 5 * Vec3(1, 0, 1).normalized()), StickClass::kMust);
+  // Out in the free space above the hole (pulling up and into the hole): never.
+  EXPECT_EQ(classify_spring(r, Vec3(0, 0, 2)), StickClass::kNever);
+}
+
 }  // namespace
 }  // namespace cmt
