@@ -1,0 +1,74 @@
+// Generalized-damper forward projection (verifier/forward_projection.h) on two_blocks (Buckley Fig 4.1) and
+// on synthetic scenes: a k x k grid of unit C-space boxes on a floor (k = 1, 4, 13: 14, ~110, ~1000 faces).
+// Ratios against the same run's baseline: building the scene's C-space (BM_BuildCSpace/k).
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <sstream>
+
+#include "models/loaded_task.h"
+#include "verifier/atom_cone.h"
+#include "verifier/forward_projection.h"
+
+namespace {
+
+const cmt::LoadedTask& two_blocks() {
+  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/two_blocks.yaml");
+  return *task;
+}
+
+// Boxes of height 1 + (i + j) % 3 on a 2k+1 wide floor, 1 apart; the start is the top of box (0, 0); the
+// motion slides down-left (v2 of two_blocks), mu = .25, theta_v = .25.
+std::string grid_yaml(int k) {
+  std::ostringstream y;
+  y << "name: grid\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.25, theta_f: "
+       "0.1}\ncspace:\n";
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      y << "  - box: {min: [" << 2 * i + 1 << ", " << 2 * j + 1 << ", 0], max: [" << 2 * i + 2 << ", "
+        << 2 * j + 2 << ", " << 1 + (i + j) % 3 << "]}\n";
+  y << "bounds: {min: [0, 0, 0], max: [" << 2 * k + 1 << ", " << 2 * k + 1 << ", 5]}\n";
+  y << "start: {point: [1.5, 1.5, 1]}\ngoal: {point: [0.5, 0.5, 0]}\n";
+  y << "motions:\n  m: {damper: [1, 1, -1]}\nstrategies:\n  s: [m]\n";
+  return y.str();
+}
+
+const cmt::LoadedTask& grid(int k) {
+  static std::map<int, std::shared_ptr<const cmt::LoadedTask>> cache;
+  auto& t = cache[k];
+  if (!t) t = cmt::load_task_from_string(grid_yaml(k), "grid");
+  return *t;
+}
+
+void project(benchmark::State& state, const cmt::LoadedTask& t, const cmt::Vec3& v) {
+  const cmt::AtomCones cones(t.cspace);
+  const cmt::ReachedSet start = cmt::ReachedSet::from_region(t, t.task.start);
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::forward_project_damper(t, cones, start, v));
+  state.counters["faces"] = static_cast<double>(t.cspace.faces().size());
+}
+
+void BM_BuildCSpaceTwoBlocks(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(two_blocks().task));
+}
+void BM_ProjectTwoBlocksDown(benchmark::State& state) { project(state, two_blocks(), cmt::Vec3(0, 0, -1)); }
+void BM_ProjectTwoBlocksSlide(benchmark::State& state) {
+  project(state, two_blocks(), cmt::Vec3(-1, 0, -1).normalized());
+}
+void BM_BuildCSpaceGrid(benchmark::State& state) {
+  const auto& t = grid(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(t.task));
+  state.counters["faces"] = static_cast<double>(t.cspace.faces().size());
+}
+void BM_ProjectGrid(benchmark::State& state) {
+  const auto& t = grid(static_cast<int>(state.range(0)));
+  project(state, t, t.task.motions[0].target);
+}
+
+}  // namespace
+
+BENCHMARK(BM_BuildCSpaceTwoBlocks)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ProjectTwoBlocksDown)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ProjectTwoBlocksSlide)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BuildCSpaceGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ProjectGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_MAIN();

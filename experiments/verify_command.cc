@@ -1,0 +1,110 @@
+#include "experiments/verify_command.h"
+
+#include <chrono>
+#include <iostream>
+
+#include "experiments/cli_output.h"
+#include "experiments/command.h"
+#include "models/task_error.h"
+
+namespace cmt {
+namespace {
+
+nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>& pieces) {
+  const int dim = lt.task.dimension;
+  nlohmann::json out = nlohmann::json::array();
+  for (const ReachedPiece& p : pieces) {
+    nlohmann::json poly = nlohmann::json::array();
+    for (const Vec3& q : p.polygon) poly.push_back(point_json(q, dim));
+    nlohmann::json entry = {{"atom", p.atom},
+                            {"name", lt.cspace.atom_name(p.atom)},
+                            {"kind", atom_kind_name(p.kind)},
+                            {"polygon", poly}};
+    if (!p.holes.empty()) {
+      nlohmann::json holes = nlohmann::json::array();
+      for (const auto& h : p.holes) {
+        nlohmann::json hole = nlohmann::json::array();
+        for (const Vec3& q : h) hole.push_back(point_json(q, dim));
+        holes.push_back(hole);
+      }
+      entry["holes"] = holes;
+    }
+    if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) entry["area"] = p.area;
+    out.push_back(entry);
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double seconds) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const VerifyStep& s : r.steps)
+    steps.push_back({{"motion", s.motion},
+                     {"termination", pieces_json(lt, s.termination.pieces())},
+                     {"may_not_terminate", s.may_not_terminate},
+                     {"fallback", s.fallback},
+                     {"fixpoint_steps", s.fixpoint_steps},
+                     {"reached_area", s.reached_area}});
+  nlohmann::json out = {
+      {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};
+  if (!r.reliable) {
+    out["failed_step"] = r.failed_step;
+    out["failure"] = r.failure;
+    out["outside_goal"] = pieces_json(lt, r.outside_goal);
+  }
+  return out;
+}
+
+void add_verify_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, motion;
+  };
+  auto options = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper motions (Buckley ch. 4)");
+  cmd->add_option("TASK", options->task, "task YAML file")->required();
+  auto* strategy =
+      cmd->add_option("--strategy", options->strategy, "strategy name (from the task's strategies)");
+  auto* motion = cmd->add_option("--motion", options->motion, "a single motion from the task's start");
+  strategy->excludes(motion);
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([options, &state] {
+    const auto start = std::chrono::steady_clock::now();
+    const auto task = load_task(options->task);
+    std::vector<std::string> motions;
+    if (!options->strategy.empty()) {
+      const Strategy* s = task->task.find_strategy(options->strategy);
+      if (!s)
+        throw TaskError(task->task.source_file, "strategies",
+                        "no strategy named '" + options->strategy + "'");
+      motions = s->motions;
+    } else if (!options->motion.empty()) {
+      motions = {options->motion};
+    } else {
+      throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
+    }
+    VerifyResult result;
+    try {
+      result = verify_motions(*task, motions);
+    } catch (const UnsupportedMotion& e) {
+      state.exit_status = report_bad_input(e.what(), state.json);
+      return;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json j = verify_json(*task, result, seconds);
+    if (state.json) {
+      print_json(j);
+    } else {
+      std::cout << task->task.name << ": " << (result.reliable ? "reliable" : "NOT reliable") << "\n";
+      for (const auto& s : j["steps"]) {
+        std::cout << "  " << s["motion"].get<std::string>() << " terminates on:";
+        for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
+        std::cout << "\n";
+      }
+      if (!result.reliable) std::cout << "  " << result.failure << "\n";
+    }
+    state.exit_status = result.reliable ? kExitSuccess : kExitFailureFound;
+  });
+}
+
+}  // namespace cmt

@@ -1,0 +1,208 @@
+// Hand-checked geometry of the generalized-damper forward projection (Buckley Alg 4.1/4.3; design steps A-F).
+// Every expected value is derived in the comments from the scene, not taken from the program's output.
+#include "verifier/forward_projection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "verifier/atom_cone.h"
+#include "verifier/damper.h"
+#include "verifier/verify.h"
+
+namespace cmt {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A C-space task: bounds box, optional obstacles, one point start, the motion v.
+std::string scene(double mu, double theta_v, const std::string& obstacles, const std::string& bounds,
+                  const std::string& start, const std::string& v) {
+  return "name: t\nunits: in\nfriction: " + std::to_string(mu) +
+         "\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: " + std::to_string(theta_v) +
+         ", theta_f: 0.1}\ncspace: " + obstacles + "\nbounds: " + bounds + "\nstart: {point: " + start +
+         "}\ngoal: {point: " + start + "}\nmotions:\n  m: {damper: " + v + "}\nstrategies:\n  s: [m]\n";
+}
+
+// The face whose plane has the given outward normal and contains p.
+int face_at(const CSpace& c, const Vec3& normal, const Vec3& p) {
+  for (const Face& f : c.faces())
+    if (f.normal.dot(normal) > 1 - 1e-12 && c.distance_to_atom(p, f.id) < 1e-9) return f.id;
+  return -1;
+}
+
+struct Projected {
+  std::shared_ptr<const LoadedTask> task;
+  DamperProjection projection;
+};
+
+Projected project(const std::string& yaml) {
+  auto task = load_task_from_string(yaml, "test");
+  const AtomCones cones(task->cspace);
+  const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
+  DamperProjection p = forward_project_damper(*task, cones, start, task->task.motions.at(0).target);
+  return {task, std::move(p)};
+}
+
+const std::string kRoom = "{min: [-5, -5, 0], max: [5, 5, 5]}";
+
+TEST(ForwardProjection, MustStickPointStartStaysPut) {
+  // Floor z = 0, mu = .5 (phi = .4636), theta_v = .1, straight down: cone(-v, .1) is inside the floor's cone
+  // (.1 < .4636), so the floor is must-stick: nothing slides, and no velocity leaves the floor (v.n = -1 <
+  // -sin .1), so the reached and termination sets are the start point alone.
+  const Projected r = project(scene(0.5, 0.1, "[]", kRoom, "[1, 2, 0]", "[0, 0, -1]"));
+  const auto pieces = r.projection.termination.pieces();
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_EQ(pieces[0].kind, AtomKind::kFace);
+  ASSERT_EQ(pieces[0].polygon.size(), 1u);
+  EXPECT_NEAR((pieces[0].polygon[0] - Vec3(1, 2, 0)).norm(), 0, 1e-12);
+  EXPECT_EQ(r.projection.reached.pieces().size(), 1u);
+  EXPECT_FALSE(r.projection.may_not_terminate);
+}
+
+TEST(ForwardProjection, VelocityConeWiderThanFrictionConeSlidesOverTheWholeFloor) {
+  // Same floor with theta_v = .6 > phi = .4636: the friction cone lies inside the velocity cone (beta = 0),
+  // so every tangential direction slides (Alg 4.3 case 1): the whole 10 x 10 floor is reached, and the floor
+  // may stick (some velocities lie in its cone): termination has the whole floor, area 100. The walls are
+  // never-stick (-v = +z is pi/2 - .6 = .97 > phi from a wall's normal), so none of them terminates.
+  const Projected r = project(scene(0.5, 0.6, "[]", kRoom, "[1, 2, 0]", "[0, 0, -1]"));
+  const CSpace& c = r.task->cspace;
+  const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
+  ASSERT_GE(floor, 0);
+  EXPECT_NEAR(r.projection.termination.face_area(floor), 100.0, 1e-9);
+  for (const Face& f : c.faces()) {
+    if (f.id == floor) continue;
+    EXPECT_FALSE(r.projection.termination.contains_atom(f.id)) << c.atom_name(f.id);
+  }
+}
+
+TEST(ForwardProjection, OcclusionRemovesTheUmbraOfAFloatingBlock) {
+  // Start (0,0,5) on the ceiling, damper straight down, theta_v = .4, mu = .5 (phi = .4636: the floor and the
+  // block's top are must-stick). A floating block |x|,|y| <= .5, 2 <= z <= 3. The velocity cone meets the
+  // floor (5 below) in a disk of radius r = 5 tan .4 = 2.114 (our 24-gon circumscribes it: area factor
+  // 24 tan(pi/24) / pi = 1.00570), and the block top (2 below) in a disk of radius .845 > .707 (the top's
+  // half-diagonal): the whole top is reached. The top's umbra on the floor is the square scaled by 5/2:
+  // |x|,|y| <= 1.25, inside the disk (half-diagonal 1.77 < 2.114). Reached floor = disk - square:
+  // area in [pi r^2 - 6.25, 1.00570 pi r^2 - 6.25] = [7.790, 7.870].
+  const Projected r = project(scene(0.5, 0.4, "[{box: {min: [-0.5, -0.5, 2], max: [0.5, 0.5, 3]}}]", kRoom,
+                                    "[0, 0, 5]", "[0, 0, -1]"));
+  const CSpace& c = r.task->cspace;
+  const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
+  const int top = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 3));
+  ASSERT_GE(floor, 0);
+  ASSERT_GE(top, 0);
+  const double radius = 5 * std::tan(0.4);
+  const double area = r.projection.reached.face_area(floor);
+  EXPECT_GE(area, kPi * radius * radius - 6.25);
+  EXPECT_LE(area, 24 * std::tan(kPi / 24) * radius * radius - 6.25 + 1e-6);
+  EXPECT_FALSE(r.projection.reached.face_region_contains(floor, Vec3(0, 0, 0)));    // under the block
+  EXPECT_FALSE(r.projection.reached.face_region_contains(floor, Vec3(1, 1, 0)));    // inside the umbra
+  EXPECT_TRUE(r.projection.reached.face_region_contains(floor, Vec3(2, 0, 0)));     // 1.25 < 2 < 2.114
+  EXPECT_FALSE(r.projection.reached.face_region_contains(floor, Vec3(2.2, 0, 0)));  // outside the cone
+  EXPECT_NEAR(r.projection.reached.face_area(top), 1.0, 1e-9);
+  // Both are must-stick, so they are the termination set (with the ceiling point: the ceiling is
+  // never-stick).
+  EXPECT_NEAR(r.projection.termination.face_area(floor), area, 1e-12);
+}
+
+TEST(ForwardProjection, SlidingHalfAngleAbovePiOver2ReachesTheWholeFace) {
+  // mu = .1 (phi = .0997), theta_v = .5, v at beta = .45 from -z. Then theta_v > phi and the velocity cone
+  // reaches past the floor's normal to the far side (beta - theta_v < 0), so the robot can be pushed
+  // "backwards" (Fig 4.19): sliding_cone reports all directions or a half-angle above pi/2, and Alg 4.3
+  // returns the whole face from a single start point.
+  const Vec3 v(std::sin(0.45), 0, -std::cos(0.45));
+  const SlidingCone s = sliding_cone(Vec3::UnitZ(), 0.1, v, 0.5);
+  ASSERT_TRUE(s.all || s.half_angle > kPi / 2);
+  const Projected r = project(scene(0.1, 0.5, "[]", kRoom, "[0, 0, 0]",
+                                    "[" + std::to_string(v.x()) + ", 0, " + std::to_string(v.z()) + "]"));
+  const int floor = face_at(r.task->cspace, Vec3::UnitZ(), Vec3(0, 0, 0));
+  EXPECT_NEAR(r.projection.reached.face_area(floor), 100.0, 1e-9);
+}
+
+TEST(ForwardProjection, ConcaveCornerStopsTheSlide) {
+  // Room [0,4]x[-2,2]x[0,4], mu = .25 (phi = .2450), theta_v = .25, start (2,0,0) on the floor, v down-left
+  // at 45 deg. On the floor -v is pi/4 from the normal > phi + theta_v: never sticks; it slides within the
+  // sliding cone about -x of half-angle asin(sin .25 / sin(pi/4)) = .35732 (damper.h closed form) and cannot
+  // lift off (v.n = -.707 < -sin .25). It reaches the wall x = 0 along the concave edge for
+  // |y| <= 2 tan .35732 = .7467. The edge's summed cone contains cone(-v, .25) (.25 < .3502, damper_test):
+  // must stick. The wall is never-stick (pi/4 from its normal). Termination: that edge interval only.
+  const Projected r =
+      project(scene(0.25, 0.25, "[]", "{min: [0, -2, 0], max: [4, 2, 4]}", "[2, 0, 0]", "[-1, 0, -1]"));
+  const auto pieces = r.projection.termination.pieces();
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_EQ(pieces[0].kind, AtomKind::kEdge);
+  ASSERT_EQ(pieces[0].polygon.size(), 2u);
+  const double half = 2 * std::tan(std::asin(std::sin(0.25) / std::sin(kPi / 4)));
+  double lo = pieces[0].polygon[0].y(), hi = pieces[0].polygon[1].y();
+  if (lo > hi) std::swap(lo, hi);
+  EXPECT_NEAR(lo, -half, 1e-6);
+  EXPECT_NEAR(hi, half, 1e-6);
+  EXPECT_NEAR(pieces[0].polygon[0].x(), 0, 1e-12);
+  EXPECT_NEAR(pieces[0].polygon[0].z(), 0, 1e-12);
+}
+
+// ---- the built-in two_blocks task (Buckley Fig 4.1) ----
+
+const LoadedTask& two_blocks() {
+  static const auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/two_blocks.yaml");
+  return *task;
+}
+
+TEST(TwoBlocks, DownIsUnreliable) {
+  // v1 straight down, theta_v = .25 > phi = .2450: the robot may stick anywhere on B's top but may also slide
+  // off it in any direction (friction cone inside the velocity cone). From B's left edge (1.5, y, 3) the cone
+  // drops 3 in onto the gap floor within x >= 1.5 - 3 tan .25 = .734, sliding there reaches the whole gap
+  // floor; from the right edge it reaches the right floor x in [4.5, 6]. A's top (z = 2, x <= -1.5) is out
+  // of reach: from the gap floor nothing lifts off (v.n = -1), and A's right wall only slides down.
+  const LoadedTask& t = two_blocks();
+  const VerifyResult r = verify_strategy(t, *t.task.find_strategy("down"));
+  EXPECT_FALSE(r.reliable);
+  ASSERT_EQ(r.steps.size(), 1u);
+  const ReachedSet& term = r.steps[0].termination;
+  const CSpace& c = t.cspace;
+  const int b_top = face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3));
+  const int a_top = face_at(c, Vec3::UnitZ(), Vec3(-3, 0, 2));
+  const int gap = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
+  const int right_floor = face_at(c, Vec3::UnitZ(), Vec3(5, 0, 0));
+  EXPECT_NEAR(term.face_area(b_top), 3 * 8, 1e-9);  // the whole top of B (3 x 8)
+  EXPECT_NEAR(term.face_area(gap), 3 * 8, 1e-9);
+  EXPECT_NEAR(term.face_area(right_floor), 1.5 * 8, 1e-9);
+  EXPECT_FALSE(term.contains_atom(a_top));
+  // Offending pieces: B's top and the right floor are outside the goal; the gap floor is not.
+  bool b_top_outside = false;
+  for (const ReachedPiece& p : r.outside_goal) {
+    b_top_outside = b_top_outside || p.atom == b_top;
+    EXPECT_NE(p.atom, gap);
+  }
+  EXPECT_TRUE(b_top_outside);
+}
+
+TEST(TwoBlocks, SlideIsReliable) {
+  // v2 down-left at 45 deg never sticks on a face (task file comment: >= .535 rad > phi from every face's
+  // into-obstacle normal it can touch); it slides off B's left edge, flies down-left with slopes dz/dx in
+  // [.59, 1.68] (so it meets A's right wall at z <= 3 - 3 * .59 = 1.23 < 2, never A's top) and ends in the
+  // concave edge x = -1.5, z = 0 (must stick) and its corner vertices, inside the closed goal rectangle.
+  const LoadedTask& t = two_blocks();
+  const VerifyResult r = verify_strategy(t, *t.task.find_strategy("slide"));
+  EXPECT_TRUE(r.reliable) << r.failure;
+  ASSERT_EQ(r.steps.size(), 1u);
+  const CSpace& c = t.cspace;
+  bool corner_edge = false;
+  for (const ReachedPiece& p : r.steps[0].termination.pieces()) {
+    EXPECT_NE(p.kind, AtomKind::kFace) << c.atom_name(p.atom);  // no face can stick under v2
+    if (p.kind == AtomKind::kEdge)
+      corner_edge =
+          corner_edge || (std::abs(p.polygon[0].x() + 1.5) < 1e-12 && std::abs(p.polygon[0].z()) < 1e-12);
+  }
+  EXPECT_TRUE(corner_edge);
+}
+
+TEST(Verify, SpringMotionsAreReportedUnsupported) {
+  const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
+  EXPECT_THROW(verify_strategy(*t, *t->task.find_strategy("stick")), UnsupportedMotion);
+}
+
+}  // namespace
+}  // namespace cmt

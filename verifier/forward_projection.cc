@@ -1,0 +1,296 @@
+// Generalized-damper forward projection (Buckley Alg 4.1 framework, Alg 4.3 sliding), design steps A-F of
+// docs/forward-projection-design.md. A worklist fixpoint over the ReachedSet: every newly reached part of a
+// face (exact regularized difference against what was there), of an edge (intervals) or a vertex is processed
+// once: sliding (A), edges (B), vertices (C), flight (D); the loop ends when nothing grows (E); termination
+// keeps the atoms that may stick (F).
+#include "verifier/forward_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "verifier/damper.h"
+#include "verifier/internal/flight.h"
+
+namespace cmt {
+namespace {
+
+using namespace fp;
+constexpr double kPi = std::numbers::pi;
+
+// Step A's in-plane sweep on one face: none, the whole face, or the wedge W of directions b_minus..b_plus.
+struct Sweep {
+  bool none = true, whole = false;
+  Vec3 b_plus, b_minus;
+  double far = 0;
+};
+
+// Buckley Alg 4.3 (via sliding_cone, damper.h) plus tangential flight: velocities tangent to the face (|v.n|
+// <= sin theta_v) move the robot within the plane; such displacements lie in the wedge of half-angle
+// acos(cos theta_v / |v_t|) about v_t, symmetric about the same axis as the sliding cone, so the larger
+// half-angle covers both (and any mix: W is a convex cone).
+Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
+  Sweep out;
+  const SlidingCone s = sliding_cone(f.normal, f.friction, v, theta_v);
+  const Vec3 vt = v - v.dot(f.normal) * f.normal;
+  const double vt_norm = vt.norm();
+  double alpha = -1;
+  Vec3 axis = s.axis;
+  if (s.possible) {
+    if (s.all) alpha = kPi;
+    alpha = std::max(alpha, s.half_angle);
+  }
+  if (vt_norm >= std::cos(theta_v + kFlightAngleSlack) && vt_norm > 0) {
+    alpha = std::max(alpha, std::acos(std::min(1.0, std::cos(theta_v + kFlightAngleSlack) / vt_norm)));
+    axis = vt / vt_norm;
+  }
+  if (alpha < 0) return out;
+  out.none = false;
+  alpha += kFlightAngleSlack;
+  // Half-angle >= pi/2: the directions positively span the plane and the velocity may switch: whole face.
+  if (alpha >= kPi / 2 || std::cos(alpha) < 1e-9 || axis.norm() == 0) {
+    out.whole = true;
+    return out;
+  }
+  const Vec3 side = f.normal.cross(axis);
+  out.b_plus = std::cos(alpha) * axis + std::sin(alpha) * side;
+  out.b_minus = std::cos(alpha) * axis - std::sin(alpha) * side;
+  // Any in-face displacement (length <= scale) in W is a combination of b_plus, b_minus with coefficients
+  // summing to <= scale / cos(alpha).
+  out.far = 2 * scale / std::cos(alpha) + 1;
+  return out;
+}
+
+class Projector {
+ public:
+  Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v)
+      : c_(lt.cspace),
+        v_(v.normalized()),
+        theta_v_(lt.task.uncertainty.theta_v),
+        reached_(start),
+        r_(reached_.impl()) {
+    nf_ = static_cast<int>(c_.faces().size());
+    ne_ = static_cast<int>(c_.edges().size());
+    nv_ = static_cast<int>(c_.vertices().size());
+    for (int id = 0; id < c_.atom_count(); ++id) cls_.push_back(classify_damper(cones[id], v_, theta_v_));
+    for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
+    cone_ = flight_cone(v_, theta_v_, c_.scale());
+    pend_region_.resize(nf_);
+    pend_seg_.resize(nf_);
+    pend_pt_.resize(nf_);
+    pend_edge_.resize(ne_);
+    pend_vertex_.assign(nv_, 0);
+    // Everything in the start is pending.
+    for (int fi = 0; fi < nf_; ++fi) {
+      pend_region_[fi] = r_.faces[fi].region;
+      for (const Segment2& s : r_.faces[fi].segments) pend_seg_[fi].push_back({s.source(), s.target()});
+      for (const Point2& p : r_.faces[fi].points) pend_pt_[fi].push_back({p});
+    }
+    for (int ei = 0; ei < ne_; ++ei) pend_edge_[ei] = r_.edges[ei];
+    for (int vi = 0; vi < nv_; ++vi) pend_vertex_[vi] = r_.vertices[vi];
+  }
+
+  DamperProjection run() {
+    DamperProjection out{ReachedSet(c_), ReachedSet(c_)};
+    bool progress = true;
+    while (progress && steps_ <= kMaxFixpointSteps) {
+      progress = false;
+      for (int fi = 0; fi < nf_; ++fi)
+        if (!pend_region_[fi].is_empty() || !pend_seg_[fi].empty() || !pend_pt_[fi].empty()) {
+          progress = true;
+          process_face(fi);
+        }
+      for (int ei = 0; ei < ne_; ++ei)
+        if (!pend_edge_[ei].empty()) {
+          progress = true;
+          process_edge(ei);
+        }
+      for (int vi = 0; vi < nv_; ++vi)
+        if (pend_vertex_[vi]) {
+          progress = true;
+          process_vertex(vi);
+        }
+    }
+    if (progress) {  // cap reached: every atom (sound, uninformative)
+      out.fallback = true;
+      for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
+    }
+    std::vector<bool> keep(c_.atom_count());
+    for (int id = 0; id < c_.atom_count(); ++id) keep[id] = cls_[id] != StickClass::kNever;
+    out.termination = reached_.restricted(keep);
+    out.may_not_terminate = out.termination.empty();
+    out.reached = std::move(reached_);
+    out.steps = steps_;
+    return out;
+  }
+
+ private:
+  // ---- adding (only what is new becomes pending) ----
+  void add_region(int fi, const PolygonSet2& part) {
+    PolygonSet2 added;
+    if (r_.add_region(fi, part, &added)) pend_region_[fi].join(added);
+  }
+  void add_convex(int fi, const Points2& pts) {
+    if (pts.size() >= 3)
+      add_region(fi, PolygonSet2(to_polygon(pts)));
+    else if (pts.size() == 2)
+      add_segment(fi, pts[0], pts[1]);
+    else if (pts.size() == 1)
+      add_point(fi, pts[0]);
+  }
+  void add_segment(int fi, const Point2& a, const Point2& b) {
+    if (r_.add_segment(fi, a, b)) pend_seg_[fi].push_back({a, b});
+  }
+  void add_point(int fi, const Point2& p) {
+    if (r_.add_point(fi, p)) pend_pt_[fi].push_back({p});
+  }
+  void add_interval(int ei, double t0, double t1) {
+    std::vector<EdgeInterval> added;
+    const double fresh = r_.add_interval(ei, t0, t1, &added);
+    if (fresh < 0) return;
+    // Growth below the parameter slack is rounding, not reach: stored, not propagated.
+    if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
+      for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
+  }
+  void add_vertex(int vi) {
+    if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
+  }
+
+  // ---- processing ----
+  void process_face(int fi) {
+    ++steps_;
+    const PolygonSet2 region = std::move(pend_region_[fi]);
+    pend_region_[fi] = PolygonSet2();
+    std::vector<Points2> parts = convex_pieces(region);
+    for (Points2& s : pend_seg_[fi]) parts.push_back(std::move(s));
+    for (Points2& p : pend_pt_[fi]) parts.push_back(std::move(p));
+    pend_seg_[fi].clear();
+    pend_pt_[fi].clear();
+    const Face& face = c_.faces()[fi];
+    const FaceChart& chart = r_.charts[fi];
+    // Reached parts of the face's edges and corners (closed regions include their boundary).
+    for (const Points2& part : parts) {
+      for (int e : face.edges) {
+        const Edge& edge = c_.edges()[e - nf_];
+        FT t0, t1;
+        if (clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1))
+          add_interval(e - nf_, CGAL::to_interval(t0).first - kEdgeParamSlack,
+                       CGAL::to_interval(t1).second + kEdgeParamSlack);
+      }
+      for (int vid : face.vertices)
+        if (inside_closed(part, chart.project(c_.vertices()[vid - nf_ - ne_].point)))
+          add_vertex(vid - nf_ - ne_);
+    }
+    if (cls_[fi] == StickClass::kMust) return;  // nothing slides or lifts off a must-stick face
+    // A. Sliding (Buckley Alg 4.3): the swept wedge, clipped to the face.
+    const Sweep& sw = sweeps_[fi];
+    if (sw.whole) {
+      add_region(fi, PolygonSet2(to_polygon(r_.face_polygon[fi])));
+    } else if (!sw.none) {
+      const Vector2 bp = chart.project_direction(sw.far * sw.b_plus);
+      const Vector2 bm = chart.project_direction(sw.far * sw.b_minus);
+      for (const Points2& part : parts) {
+        Points2 pts = part;
+        for (const Point2& p : part) {
+          pts.push_back(p + bp);
+          pts.push_back(p + bm);
+        }
+        add_convex(fi, clip(convex_hull(pts), r_.face_polygon[fi]));
+      }
+    }
+    // D. Flight, when some admissible velocity leaves the face (angle(v, n) < pi/2 + theta_v); only points in
+    // front of the face's plane are reachable from its interior.
+    if (v_.dot(face.normal) <= -std::sin(theta_v_ + kFlightAngleSlack)) return;
+    for (const Points2& part : parts) {
+      FlightSource src;
+      for (const Point2& p : part) src.vertices.push_back(chart.lift(p));
+      src.keep_front.push_back(chart.plane);
+      src.face = fi;
+      absorb(fly(r_, src, cone_));
+    }
+  }
+
+  void process_edge(int ei) {
+    ++steps_;
+    std::vector<EdgeInterval> ivs = std::move(pend_edge_[ei]);
+    pend_edge_[ei].clear();
+    const Edge& e = c_.edges()[ei];
+    const int id = nf_ + ei;
+    for (const EdgeInterval& iv : ivs) {
+      if (iv.t0 <= kEdgeParamSlack && e.vertex_a >= 0) add_vertex(e.vertex_a - nf_ - ne_);
+      if (iv.t1 >= 1 - kEdgeParamSlack && e.vertex_b >= 0) add_vertex(e.vertex_b - nf_ - ne_);
+    }
+    if (cls_[id] == StickClass::kMust) return;
+    // B. Sliding along the edge toward an end reaches the end. A flat edge (a cut between coplanar faces) is
+    // no crease: motion along it is motion on the plane, covered by both faces' sliding wedges (the segment
+    // seeds both faces below), so edge_sliding's coarser "any component along the edge" is not applied.
+    const EdgeSliding es = e.shape == EdgeShape::kFlat ? EdgeSliding{} : edge_sliding(c_, id, v_, theta_v_);
+    for (const EdgeInterval& iv : ivs) {
+      if (es.toward_b) add_interval(ei, iv.t0, 1);
+      if (es.toward_a) add_interval(ei, 0, iv.t1);
+    }
+    std::vector<Plane3> keep;
+    if (e.shape == EdgeShape::kConcave || e.shape == EdgeShape::kFlat)
+      for (int f : e.faces) keep.push_back(r_.charts[f].plane);
+    for (const EdgeInterval& iv : ivs) {
+      const Vec3 a = e.a + iv.t0 * (e.b - e.a), b = e.a + iv.t1 * (e.b - e.a);
+      // Onto either adjacent face (over-approximation: the whole segment seeds both).
+      for (int f : e.faces) add_segment(f, r_.charts[f].project(a), r_.charts[f].project(b));
+      FlightSource src;
+      src.vertices = {exact(a)};
+      if (iv.t1 > iv.t0) src.vertices.push_back(exact(b));
+      src.keep_front = keep;
+      absorb(fly(r_, src, cone_));
+    }
+  }
+
+  void process_vertex(int vi) {
+    ++steps_;
+    pend_vertex_[vi] = 0;
+    const Vertex& vx = c_.vertices()[vi];
+    if (cls_[nf_ + ne_ + vi] == StickClass::kMust) return;
+    // C. Onto adjacent edges and faces, and flight.
+    for (int e : vx.edges) {
+      const Edge& edge = c_.edges()[e - nf_];
+      const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
+      add_interval(e - nf_, t, t);
+    }
+    for (int f : vx.faces) add_point(f, r_.charts[f].project(vx.point));
+    FlightSource src;
+    src.vertices = {exact(vx.point)};
+    absorb(fly(r_, src, cone_));
+  }
+
+  void absorb(const std::vector<FlightHit>& hits) {
+    for (const FlightHit& h : hits) {
+      if (!h.region.is_empty())
+        add_region(h.face, h.region);
+      else
+        add_convex(h.face, h.lower);
+    }
+  }
+
+  const CSpace& c_;
+  Vec3 v_;
+  double theta_v_;
+  ReachedSet reached_;
+  ReachedSet::Impl& r_;
+  int nf_ = 0, ne_ = 0, nv_ = 0;
+  std::vector<StickClass> cls_;
+  std::vector<Sweep> sweeps_;
+  FlightCone cone_;
+  std::vector<PolygonSet2> pend_region_;
+  std::vector<std::vector<Points2>> pend_seg_, pend_pt_;
+  std::vector<std::vector<EdgeInterval>> pend_edge_;
+  std::vector<char> pend_vertex_;
+  int steps_ = 0;
+};
+
+}  // namespace
+
+DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
+                                        const ReachedSet& start, const Vec3& v) {
+  return Projector(task, cones, start, v).run();
+}
+
+}  // namespace cmt

@@ -1,0 +1,29 @@
+// Forward projection and sticking termination of one generalized-damper motion (Buckley ch. 4, Alg 4.1 with
+// Alg 4.3 for sliding), following docs/forward-projection-design.md steps A-F. Sound: `termination` contains
+// every point where a damper motion with velocity anywhere in cone(v, theta_v), switching freely, can stop
+// by sticking; every approximation adds reachable points.
+#pragma once
+
+#include "models/loaded_task.h"
+#include "verifier/atom_cone.h"
+#include "verifier/reached_set.h"
+
+namespace cmt {
+
+struct DamperProjection {
+  ReachedSet reached;      // F_m(S): every contact point reachable from the start (the start included)
+  ReachedSet termination;  // T_m(S): the reached points of atoms whose damper class is must or may
+  // No reached atom can stick: the motion may never terminate (reported as a failure).
+  bool may_not_terminate = false;
+  // The fixpoint hit kMaxFixpointSteps and fell back to "every atom is reached" (sound, uninformative).
+  bool fallback = false;
+  int steps = 0;  // work items processed
+};
+
+// Work items (a face's new region, an edge's new intervals, a vertex) processed before the fallback.
+inline constexpr int kMaxFixpointSteps = 200000;
+
+DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
+                                        const ReachedSet& start, const Vec3& v);
+
+}  // namespace cmt

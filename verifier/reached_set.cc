@@ -1,0 +1,564 @@
+// ReachedSet (verifier/reached_set.h): the per-face exact regions and seeds, edge intervals, vertex flags.
+#include "verifier/reached_set.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "models/polygon_distance.h"
+#include "models/task_error.h"
+#include "verifier/internal/face_regions.h"
+
+namespace cmt {
+
+using fp::FT;
+using fp::Point2;
+using fp::Points2;
+using fp::PolygonSet2;
+using fp::PolygonWithHoles2;
+
+// ---- Impl ----
+
+ReachedSet::Impl::Impl(const CSpace& c) : cspace(&c) {
+  for (const Face& f : c.faces()) {
+    charts.push_back(fp::make_chart(f));
+    Points2 pts;
+    for (const Vec3& p : f.polygon) pts.push_back(charts.back().project(p));
+    face_polygon.push_back(fp::convex_hull(pts));
+  }
+  faces.resize(c.faces().size());
+  edges.resize(c.edges().size());
+  vertices.assign(c.vertices().size(), 0);
+}
+
+bool ReachedSet::Impl::add_region(int fi, const PolygonSet2& part, PolygonSet2* added) {
+  PolygonSet2 diff = part;
+  diff.difference(faces[fi].region);
+  if (diff.is_empty()) return false;
+  faces[fi].region.join(diff);
+  if (added) *added = std::move(diff);
+  return true;
+}
+
+bool ReachedSet::Impl::covered(int fi, const Point2& p) const {
+  const fp::FaceSet& fs = faces[fi];
+  if (!fs.region.is_empty() && fs.region.oriented_side(p) != CGAL::ON_NEGATIVE_SIDE) return true;
+  for (const fp::Segment2& s : fs.segments)
+    if (s.has_on(p)) return true;
+  return std::find(fs.points.begin(), fs.points.end(), p) != fs.points.end();
+}
+
+bool ReachedSet::Impl::add_segment(int fi, const Point2& a, const Point2& b) {
+  if (a == b) return add_point(fi, a);
+  fp::FaceSet& fs = faces[fi];
+  const fp::Segment2 seg(a, b);
+  for (const fp::Segment2& s : fs.segments)
+    if (s.has_on(a) && s.has_on(b)) return false;
+  if (!fs.region.is_empty()) {
+    // Covered by the closed region iff every piece between the crossings with the region's boundary is.
+    std::vector<FT> ts{0, 1};
+    const FT len2 = seg.squared_length();
+    std::vector<PolygonWithHoles2> pwhs;
+    fs.region.polygons_with_holes(std::back_inserter(pwhs));
+    auto scan = [&](const fp::Polygon2& poly) {
+      for (auto e = poly.edges_begin(); e != poly.edges_end(); ++e) {
+        const auto x = CGAL::intersection(seg, *e);
+        if (!x) continue;
+        if (const Point2* p = boost::get<Point2>(&*x)) ts.push_back(((*p - a) * (b - a)) / len2);
+        if (const fp::Segment2* s = boost::get<fp::Segment2>(&*x)) {
+          ts.push_back(((s->source() - a) * (b - a)) / len2);
+          ts.push_back(((s->target() - a) * (b - a)) / len2);
+        }
+      }
+    };
+    for (const PolygonWithHoles2& pwh : pwhs) {
+      scan(pwh.outer_boundary());
+      for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) scan(*h);
+    }
+    std::sort(ts.begin(), ts.end());
+    bool all = fs.region.oriented_side(a) != CGAL::ON_NEGATIVE_SIDE &&
+               fs.region.oriented_side(b) != CGAL::ON_NEGATIVE_SIDE;
+    for (std::size_t i = 0; all && i + 1 < ts.size(); ++i) {
+      if (ts[i] == ts[i + 1]) continue;
+      const Point2 mid = a + (b - a) * ((ts[i] + ts[i + 1]) / 2);
+      all = fs.region.oriented_side(mid) != CGAL::ON_NEGATIVE_SIDE;
+    }
+    if (all) return false;
+  }
+  fs.segments.push_back(seg);
+  return true;
+}
+
+bool ReachedSet::Impl::add_point(int fi, const Point2& p) {
+  if (covered(fi, p)) return false;
+  faces[fi].points.push_back(p);
+  return true;
+}
+
+double ReachedSet::Impl::add_interval(int ei, double t0, double t1, std::vector<EdgeInterval>* added) {
+  t0 = std::clamp(t0, 0.0, 1.0);
+  t1 = std::clamp(t1, 0.0, 1.0);
+  if (t0 > t1) std::swap(t0, t1);
+  auto& list = edges[ei];
+  std::vector<EdgeInterval> gaps;
+  if (t0 == t1) {
+    bool in = false;
+    for (const EdgeInterval& iv : list) in = in || (iv.t0 <= t0 && t0 <= iv.t1);
+    if (in) return -1;
+    gaps.push_back({t0, t1});
+  } else {
+    // Uncovered parts of [t0, t1].
+    double cursor = t0;
+    for (const EdgeInterval& iv : list) {
+      if (iv.t1 < cursor) continue;
+      if (iv.t0 > t1) break;
+      if (iv.t0 > cursor) gaps.push_back({cursor, std::min(iv.t0, t1)});
+      cursor = std::max(cursor, iv.t1);
+    }
+    if (cursor < t1) gaps.push_back({cursor, t1});
+    if (gaps.empty()) return -1;
+  }
+  double fresh = 0;
+  for (const EdgeInterval& g : gaps) fresh += g.t1 - g.t0;
+  list.push_back({t0, t1});
+  std::sort(list.begin(), list.end(),
+            [](const EdgeInterval& a, const EdgeInterval& b) { return a.t0 < b.t0; });
+  std::vector<EdgeInterval> merged;
+  for (const EdgeInterval& iv : list) {
+    if (!merged.empty() && iv.t0 <= merged.back().t1 + kEdgeParamSlack)
+      merged.back().t1 = std::max(merged.back().t1, iv.t1);
+    else
+      merged.push_back(iv);
+  }
+  list = std::move(merged);
+  if (added) *added = gaps;
+  return fresh;
+}
+
+bool ReachedSet::Impl::add_vertex(int vi) {
+  if (vertices[vi]) return false;
+  vertices[vi] = 1;
+  return true;
+}
+
+// ---- ReachedSet ----
+
+ReachedSet::ReachedSet(const CSpace& cspace) : impl_(std::make_unique<Impl>(cspace)) {}
+ReachedSet::~ReachedSet() = default;
+ReachedSet::ReachedSet(const ReachedSet& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+ReachedSet& ReachedSet::operator=(const ReachedSet& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+ReachedSet::ReachedSet(ReachedSet&&) noexcept = default;
+ReachedSet& ReachedSet::operator=(ReachedSet&&) noexcept = default;
+
+const CSpace& ReachedSet::cspace() const { return *impl_->cspace; }
+
+void ReachedSet::add_whole_atom(int id) {
+  const CSpace& c = cspace();
+  const int k = c.atom_index(id);
+  switch (c.atom_kind(id)) {
+    case AtomKind::kFace: {
+      PolygonSet2 whole(fp::to_polygon(impl_->face_polygon[k]));
+      impl_->add_region(k, whole, nullptr);
+      break;
+    }
+    case AtomKind::kEdge:
+      impl_->add_interval(k, 0, 1, nullptr);
+      break;
+    case AtomKind::kVertex:
+      impl_->add_vertex(k);
+      break;
+  }
+}
+
+void ReachedSet::add_face_polygon(int id, const std::vector<Vec3>& polygon) {
+  const int k = cspace().atom_index(id);
+  Points2 pts;
+  for (const Vec3& p : polygon) pts.push_back(impl_->charts[k].project(p));
+  pts = fp::convex_hull(pts);
+  if (pts.size() >= 3)
+    impl_->add_region(k, PolygonSet2(fp::to_polygon(pts)), nullptr);
+  else if (pts.size() == 2)
+    impl_->add_segment(k, pts[0], pts[1]);
+  else if (pts.size() == 1)
+    impl_->add_point(k, pts[0]);
+}
+
+void ReachedSet::add_face_segment(int id, const Vec3& a, const Vec3& b) {
+  const int k = cspace().atom_index(id);
+  impl_->add_segment(k, impl_->charts[k].project(a), impl_->charts[k].project(b));
+}
+
+void ReachedSet::add_face_point(int id, const Vec3& p) {
+  const int k = cspace().atom_index(id);
+  impl_->add_point(k, impl_->charts[k].project(p));
+}
+
+void ReachedSet::add_edge_interval(int id, double t0, double t1) {
+  impl_->add_interval(cspace().atom_index(id), t0, t1, nullptr);
+}
+
+void ReachedSet::add_vertex(int id) { impl_->add_vertex(cspace().atom_index(id)); }
+
+namespace {
+
+// Edge parameters of an exact interval, rounded outward by kEdgeParamSlack.
+EdgeInterval outward(const FT& t0, const FT& t1) {
+  return {std::max(0.0, CGAL::to_interval(t0).first - kEdgeParamSlack),
+          std::min(1.0, CGAL::to_interval(t1).second + kEdgeParamSlack)};
+}
+
+}  // namespace
+
+void ReachedSet::add_boundary_closure() {
+  const CSpace& c = cspace();
+  const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
+  for (int fi = 0; fi < nf; ++fi) {
+    const fp::FaceSet& fs = impl_->faces[fi];
+    if (fs.empty()) continue;
+    std::vector<Points2> parts = fp::convex_pieces(fs.region);
+    for (const fp::Segment2& s : fs.segments) parts.push_back({s.source(), s.target()});
+    for (const Point2& p : fs.points) parts.push_back({p});
+    const Face& face = c.faces()[fi];
+    const fp::FaceChart& chart = impl_->charts[fi];
+    for (const Points2& part : parts) {
+      for (int e : face.edges) {
+        const Edge& edge = c.edges()[e - nf];
+        FT t0, t1;
+        if (fp::clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1)) {
+          const EdgeInterval iv = outward(t0, t1);
+          impl_->add_interval(e - nf, iv.t0, iv.t1, nullptr);
+        }
+      }
+      for (int v : face.vertices)
+        if (fp::inside_closed(part, chart.project(c.vertices()[v - nf - ne].point)))
+          impl_->add_vertex(v - nf - ne);
+    }
+  }
+  for (int ei = 0; ei < ne; ++ei)
+    for (const EdgeInterval& iv : impl_->edges[ei]) {
+      const Edge& e = c.edges()[ei];
+      if (iv.t0 <= kEdgeParamSlack && e.vertex_a >= 0) impl_->add_vertex(e.vertex_a - nf - ne);
+      if (iv.t1 >= 1 - kEdgeParamSlack && e.vertex_b >= 0) impl_->add_vertex(e.vertex_b - nf - ne);
+    }
+}
+
+void ReachedSet::unite(const ReachedSet& other) {
+  const Impl& o = *other.impl_;
+  for (std::size_t fi = 0; fi < o.faces.size(); ++fi) {
+    if (!o.faces[fi].region.is_empty()) impl_->add_region(static_cast<int>(fi), o.faces[fi].region, nullptr);
+    for (const fp::Segment2& s : o.faces[fi].segments)
+      impl_->add_segment(static_cast<int>(fi), s.source(), s.target());
+    for (const Point2& p : o.faces[fi].points) impl_->add_point(static_cast<int>(fi), p);
+  }
+  for (std::size_t ei = 0; ei < o.edges.size(); ++ei)
+    for (const EdgeInterval& iv : o.edges[ei])
+      impl_->add_interval(static_cast<int>(ei), iv.t0, iv.t1, nullptr);
+  for (std::size_t vi = 0; vi < o.vertices.size(); ++vi)
+    if (o.vertices[vi]) impl_->vertices[vi] = 1;
+}
+
+ReachedSet ReachedSet::restricted(const std::vector<bool>& keep) const {
+  ReachedSet out = *this;
+  const CSpace& c = cspace();
+  for (int id = 0; id < c.atom_count(); ++id) {
+    if (keep[id]) continue;
+    const int k = c.atom_index(id);
+    switch (c.atom_kind(id)) {
+      case AtomKind::kFace:
+        out.impl_->faces[k] = fp::FaceSet();
+        break;
+      case AtomKind::kEdge:
+        out.impl_->edges[k].clear();
+        break;
+      case AtomKind::kVertex:
+        out.impl_->vertices[k] = 0;
+        break;
+    }
+  }
+  return out;
+}
+
+bool ReachedSet::contains_atom(int id) const {
+  const CSpace& c = cspace();
+  const int k = c.atom_index(id);
+  switch (c.atom_kind(id)) {
+    case AtomKind::kFace:
+      return !impl_->faces[k].empty();
+    case AtomKind::kEdge:
+      return !impl_->edges[k].empty();
+    case AtomKind::kVertex:
+      return impl_->vertices[k] != 0;
+  }
+  return false;
+}
+
+std::vector<int> ReachedSet::atoms() const {
+  std::vector<int> out;
+  for (int id = 0; id < cspace().atom_count(); ++id)
+    if (contains_atom(id)) out.push_back(id);
+  return out;
+}
+
+bool ReachedSet::empty() const { return atoms().empty(); }
+
+double ReachedSet::face_area(int id) const {
+  const int k = cspace().atom_index(id);
+  // Chart areas shrink by |n_drop| (projection along the dropped axis).
+  return fp::area(impl_->faces[k].region) / std::abs(cspace().faces()[k].normal[impl_->charts[k].drop]);
+}
+
+double ReachedSet::area() const {
+  double total = 0;
+  for (const Face& f : cspace().faces()) total += face_area(f.id);
+  return total;
+}
+
+std::vector<EdgeInterval> ReachedSet::edge_intervals(int id) const {
+  return impl_->edges[cspace().atom_index(id)];
+}
+
+bool ReachedSet::has_vertex(int id) const { return impl_->vertices[cspace().atom_index(id)] != 0; }
+
+bool ReachedSet::face_region_contains(int id, const Vec3& p) const {
+  const int k = cspace().atom_index(id);
+  const PolygonSet2& r = impl_->faces[k].region;
+  return !r.is_empty() && r.oriented_side(impl_->charts[k].project(p)) != CGAL::ON_NEGATIVE_SIDE;
+}
+
+namespace {
+
+std::vector<Vec3> lift_loop(const fp::Polygon2& poly, const fp::FaceChart& chart) {
+  std::vector<Vec3> out;
+  for (auto v = poly.vertices_begin(); v != poly.vertices_end(); ++v) out.push_back(chart.lift_double(*v));
+  if (chart.flips) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+void region_pieces(const PolygonSet2& region, int atom, const fp::FaceChart& chart, double area_scale,
+                   std::vector<ReachedPiece>* out) {
+  std::vector<PolygonWithHoles2> pwhs;
+  region.polygons_with_holes(std::back_inserter(pwhs));
+  for (const PolygonWithHoles2& pwh : pwhs) {
+    ReachedPiece p;
+    p.atom = atom;
+    p.kind = AtomKind::kFace;
+    p.polygon = lift_loop(pwh.outer_boundary(), chart);
+    double a = std::abs(CGAL::to_double(pwh.outer_boundary().area()));
+    for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) {
+      p.holes.push_back(lift_loop(*h, chart));
+      a -= std::abs(CGAL::to_double(h->area()));
+    }
+    p.area = a * area_scale;
+    out->push_back(std::move(p));
+  }
+}
+
+}  // namespace
+
+std::vector<ReachedPiece> ReachedSet::pieces() const {
+  const CSpace& c = cspace();
+  const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
+  std::vector<ReachedPiece> out;
+  for (int fi = 0; fi < nf; ++fi) {
+    const fp::FaceSet& fs = impl_->faces[fi];
+    const fp::FaceChart& chart = impl_->charts[fi];
+    region_pieces(fs.region, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
+    for (const fp::Segment2& s : fs.segments) {
+      if (impl_->covered(fi, s.source()) && impl_->covered(fi, s.target()) && !fs.region.is_empty() &&
+          fs.region.oriented_side(CGAL::midpoint(s.source(), s.target())) != CGAL::ON_NEGATIVE_SIDE)
+        continue;  // swallowed by a region grown later (approximate check: output only)
+      out.push_back(
+          {fi, AtomKind::kFace, {chart.lift_double(s.source()), chart.lift_double(s.target())}, {}, 0});
+    }
+    for (const Point2& p : fs.points)
+      if (fs.region.is_empty() || fs.region.oriented_side(p) == CGAL::ON_NEGATIVE_SIDE)
+        out.push_back({fi, AtomKind::kFace, {chart.lift_double(p)}, {}, 0});
+  }
+  for (int ei = 0; ei < ne; ++ei) {
+    const Edge& e = c.edges()[ei];
+    for (const EdgeInterval& iv : impl_->edges[ei]) {
+      ReachedPiece p{nf + ei, AtomKind::kEdge, {e.a + iv.t0 * (e.b - e.a)}, {}, 0};
+      if (iv.t1 > iv.t0) p.polygon.push_back(e.a + iv.t1 * (e.b - e.a));
+      out.push_back(std::move(p));
+    }
+  }
+  for (std::size_t vi = 0; vi < impl_->vertices.size(); ++vi)
+    if (impl_->vertices[vi])
+      out.push_back({nf + ne + static_cast<int>(vi), AtomKind::kVertex, {c.vertices()[vi].point}, {}, 0});
+  return out;
+}
+
+namespace {
+
+// Is the segment [a, b] (a == b: a point) within `tol` of the container (its closed face regions, edge
+// intervals, vertices)? Coverage is accumulated as parameter intervals on [0, 1].
+bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, double tol) {
+  const ReachedSet::Impl& im = container.impl();
+  const CSpace& c = container.cspace();
+  const int nf = static_cast<int>(c.faces().size());
+  std::vector<std::pair<double, double>> cover;
+  const double len = (b - a).norm();
+  for (int fi = 0; fi < nf; ++fi) {
+    const fp::FaceSet& fs = im.faces[fi];
+    if (fs.region.is_empty()) continue;
+    const Face& f = c.faces()[fi];
+    if (std::abs(f.normal.dot(a) - f.offset) > tol || std::abs(f.normal.dot(b) - f.offset) > tol) continue;
+    const fp::FaceChart& chart = im.charts[fi];
+    const Point2 a2 = chart.project(a), b2 = chart.project(b);
+    for (const Points2& piece : fp::convex_pieces(fs.region)) {
+      // Grow the piece by tol: each side moved outward (chart lengths are at most 3-D lengths).
+      Points2 grown = piece;
+      std::vector<fp::HalfPlane2> sides;
+      for (std::size_t i = 0; i < piece.size(); ++i) {
+        const Point2 &p = piece[i], &q = piece[(i + 1) % piece.size()];
+        const FT dx = q.x() - p.x(), dy = q.y() - p.y();
+        const double norm = std::sqrt(CGAL::to_double(dx * dx + dy * dy));
+        sides.push_back({-dy, dx, dy * p.x() - dx * p.y() + FT(tol * norm)});
+      }
+      FT lo = 0, hi = 1;
+      bool ok = true;
+      for (const fp::HalfPlane2& h : sides) {
+        const FT fa = h.a * a2.x() + h.b * a2.y() + h.c, fb = h.a * b2.x() + h.b * b2.y() + h.c;
+        if (fa < 0 && fb < 0) {
+          ok = false;
+          break;
+        }
+        if (fa < 0) lo = CGAL::max(lo, fa / (fa - fb));
+        if (fb < 0) hi = CGAL::min(hi, fa / (fa - fb));
+      }
+      if (ok && lo <= hi) cover.push_back({CGAL::to_double(lo), CGAL::to_double(hi)});
+    }
+  }
+  const int ne = static_cast<int>(c.edges().size());
+  for (int ei = 0; ei < ne; ++ei) {
+    if (im.edges[ei].empty()) continue;
+    const Edge& e = c.edges()[ei];
+    if (distance_to_segment(a, e.a, e.b) > tol || distance_to_segment(b, e.a, e.b) > tol) continue;
+    const Vec3 d = e.b - e.a;
+    const double el2 = d.squaredNorm();
+    const double ta = (a - e.a).dot(d) / el2, tb = (b - e.a).dot(d) / el2;
+    const double slack = tol / std::sqrt(el2);
+    for (const EdgeInterval& iv : im.edges[ei]) {
+      if (tb == ta) {
+        if (ta >= iv.t0 - slack && ta <= iv.t1 + slack) cover.push_back({0, 1});
+        continue;
+      }
+      double s0 = (iv.t0 - slack - ta) / (tb - ta), s1 = (iv.t1 + slack - ta) / (tb - ta);
+      if (s0 > s1) std::swap(s0, s1);
+      if (s1 >= 0 && s0 <= 1) cover.push_back({std::max(0.0, s0), std::min(1.0, s1)});
+    }
+  }
+  for (std::size_t vi = 0; vi < im.vertices.size(); ++vi)
+    if (im.vertices[vi] && len == 0 && (c.vertices()[vi].point - a).norm() <= tol) cover.push_back({0, 1});
+  std::sort(cover.begin(), cover.end());
+  double reach = 0;
+  const double gap = len > 0 ? tol / len : 0;
+  for (const auto& [s0, s1] : cover) {
+    if (s0 > reach + gap) return false;
+    reach = std::max(reach, s1);
+  }
+  return !cover.empty() && reach >= 1 - gap;
+}
+
+}  // namespace
+
+std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container, double tol) const {
+  const CSpace& c = cspace();
+  const int nf = static_cast<int>(c.faces().size());
+  std::vector<ReachedPiece> out;
+  for (int fi = 0; fi < nf; ++fi) {
+    const fp::FaceSet& fs = impl_->faces[fi];
+    if (fs.empty()) continue;
+    const fp::FaceChart& chart = impl_->charts[fi];
+    PolygonSet2 rest = fs.region;
+    rest.difference(container.impl_->faces[fi].region);  // exact containment per face
+    region_pieces(rest, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
+  }
+  for (const ReachedPiece& p : pieces()) {
+    if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) continue;
+    const Vec3& a = p.polygon.front();
+    const Vec3& b = p.polygon.back();
+    if (!segment_covered(a, b, container, tol)) out.push_back(p);
+  }
+  return out;
+}
+
+// ---- locating task regions ----
+
+ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& region) {
+  const CSpace& c = lt.cspace;
+  const double tol = lt.surface_tolerance();
+  ReachedSet rs(c);
+  const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
+  if (region.kind == Region::Kind::kPoint) {
+    const Vec3& p = region.points.at(0);
+    const int id = c.nearest_atom(p, tol);
+    if (id < 0) throw TaskError(lt.task.source_file, region.key, "the point is not on the contact surface");
+    switch (c.atom_kind(id)) {
+      case AtomKind::kFace:
+        rs.add_face_point(id, p);
+        break;
+      case AtomKind::kEdge: {
+        const Edge& e = c.edges()[id - nf];
+        const double t = std::clamp((p - e.a).dot(e.b - e.a) / (e.b - e.a).squaredNorm(), 0.0, 1.0);
+        rs.add_edge_interval(id, t, t);
+        for (int f : e.faces) rs.add_face_point(f, e.a + t * (e.b - e.a));
+        break;
+      }
+      case AtomKind::kVertex:
+        rs.add_vertex(id);
+        for (int f : c.vertices()[id - nf - ne].faces) rs.add_face_point(f, c.vertices()[id - nf - ne].point);
+        break;
+    }
+  } else {
+    for (const Face& f : c.faces()) {
+      bool in_plane = true;
+      for (const Vec3& p : region.points) in_plane = in_plane && std::abs(f.normal.dot(p) - f.offset) <= tol;
+      if (!in_plane) continue;
+      const fp::FaceChart& chart = rs.impl_->charts[f.id];
+      Points2 pts;
+      for (const Vec3& p : region.points) pts.push_back(chart.project(p));
+      const Points2 part = fp::clip(fp::convex_hull(pts), rs.impl_->face_polygon[f.id]);
+      if (part.size() >= 3)
+        rs.impl_->add_region(f.id, PolygonSet2(fp::to_polygon(part)), nullptr);
+      else if (part.size() == 2)
+        rs.impl_->add_segment(f.id, part[0], part[1]);
+      else if (part.size() == 1)
+        rs.impl_->add_point(f.id, part[0]);
+    }
+    if (region.kind == Region::Kind::kSegment) {
+      const Vec3 &a = region.points[0], &b = region.points[1];
+      for (const Edge& e : c.edges()) {
+        const Vec3 d = e.b - e.a;
+        if ((a - e.a).cross(d).norm() > tol * d.norm() || (b - e.a).cross(d).norm() > tol * d.norm())
+          continue;
+        const double ta = (a - e.a).dot(d) / d.squaredNorm(), tb = (b - e.a).dot(d) / d.squaredNorm();
+        const double t0 = std::max(0.0, std::min(ta, tb)), t1 = std::min(1.0, std::max(ta, tb));
+        if (t0 <= t1) rs.add_edge_interval(e.id, t0, t1);
+      }
+    }
+    rs.add_boundary_closure();
+  }
+  // Every sample of the region must be near a located atom.
+  for (const Vec3& s : region_samples(region, 8)) {
+    const int id = c.nearest_atom(s, tol);
+    bool ok = id >= 0 && rs.contains_atom(id);
+    if (id >= 0 && !ok) {
+      // A sample near an edge or vertex may be covered by an adjacent face's part.
+      for (const Face& f : c.faces())
+        ok = ok || (rs.contains_atom(f.id) && c.distance_to_atom(s, f.id) <= tol);
+    }
+    if (!ok) throw TaskError(lt.task.source_file, region.key, "part of the region is on no contact face");
+  }
+  return rs;
+}
+
+ReachedSet ReachedSet::from_regions(const LoadedTask& lt, const std::vector<Region>& regions) {
+  ReachedSet rs(lt.cspace);
+  for (const Region& r : regions) rs.unite(from_region(lt, r));
+  return rs;
+}
+
+}  // namespace cmt

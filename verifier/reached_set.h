@@ -1,0 +1,87 @@
+// A set of contact points on the C-space surface (Buckley ch. 4): the start of a motion, its forward
+// projection, its termination set. Per face: exact regions in the face's 2-D chart (regularized, closed)
+// plus 1-D and 0-D seeds (segments, points: a start segment lies in a face without area); per edge: closed
+// intervals of the parameter t in [0, 1] along a -> b; per vertex: a flag. Exact types (CGAL Epeck) stay in
+// the .cc files (verifier/internal/face_regions.h); this header is CGAL-free.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "models/loaded_task.h"
+
+namespace cmt {
+
+struct EdgeInterval {
+  double t0 = 0, t1 = 0;  // 0 <= t0 <= t1 <= 1, along edge a -> b
+};
+
+// One output piece in task coordinates (doubles): a face region (outer boundary, counter-clockwise about the
+// face normal, with holes), a segment (2 points) or a point (1 point) on a face, an edge interval (2 points,
+// or 1 when degenerate), or a vertex (1 point).
+struct ReachedPiece {
+  int atom = -1;
+  AtomKind kind = AtomKind::kFace;
+  std::vector<Vec3> polygon;
+  std::vector<std::vector<Vec3>> holes;
+  double area = 0;  // face regions only
+};
+
+class ReachedSet {
+ public:
+  struct Impl;  // verifier/internal/face_regions.h
+
+  explicit ReachedSet(const CSpace& cspace);
+  ~ReachedSet();
+  ReachedSet(const ReachedSet& other);
+  ReachedSet& operator=(const ReachedSet& other);
+  ReachedSet(ReachedSet&&) noexcept;
+  ReachedSet& operator=(ReachedSet&&) noexcept;
+
+  // Locates a task region (start or goal) on the atoms it lies on, within LoadedTask::surface_tolerance():
+  // a point goes to CSpace::nearest_atom; a segment or polygon is clipped (exactly, in the chart) to every
+  // face whose plane holds it and, for a segment, to every edge whose line holds it. The closure is added
+  // (edge intervals and vertices covered by the face parts). Throws TaskError when a region sample is on no
+  // located piece.
+  static ReachedSet from_region(const LoadedTask& task, const Region& region);
+  static ReachedSet from_regions(const LoadedTask& task, const std::vector<Region>& regions);
+
+  const CSpace& cspace() const;
+
+  // Building blocks (coordinates in task units; face inputs are projected into the face's chart).
+  void add_whole_atom(int atom_id);
+  void add_face_polygon(int face_atom, const std::vector<Vec3>& convex_polygon);
+  void add_face_segment(int face_atom, const Vec3& a, const Vec3& b);
+  void add_face_point(int face_atom, const Vec3& p);
+  void add_edge_interval(int edge_atom, double t0, double t1);
+  void add_vertex(int vertex_atom);
+  // Adds the edge intervals and vertices covered by the closed face parts.
+  void add_boundary_closure();
+  void unite(const ReachedSet& other);
+  // Only the atoms with keep[atom] true.
+  ReachedSet restricted(const std::vector<bool>& keep) const;
+
+  bool empty() const;
+  bool contains_atom(int atom_id) const;
+  std::vector<int> atoms() const;  // ascending ids of atoms with a non-empty part
+  double face_area(int face_atom) const;
+  double area() const;  // sum over faces
+  std::vector<EdgeInterval> edge_intervals(int edge_atom) const;
+  bool has_vertex(int vertex_atom) const;
+  // Is p (projected into the face's chart) in the closed region of the face (regions only, exact)?
+  bool face_region_contains(int face_atom, const Vec3& p) const;
+
+  std::vector<ReachedPiece> pieces() const;
+  // The pieces of this set not contained in `container`: face regions exactly (regularized difference, the
+  // remainder is reported); face segments/points, edge intervals and vertices within `tolerance` (task
+  // units) of the container's closed face regions, edge intervals or vertices count as contained.
+  std::vector<ReachedPiece> pieces_outside(const ReachedSet& container, double tolerance) const;
+
+  Impl& impl() { return *impl_; }
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cmt
