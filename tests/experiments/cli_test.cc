@@ -132,7 +132,8 @@ TEST(CmtSticking, ClassifiesEveryAtom) {
   // Spring motions report each face's weak and strong sticking polygons.
   ASSERT_EQ(j["faces"].size(), 14u);
   EXPECT_TRUE(j["faces"][0].contains("weak") && j["faces"][0].contains("strong"));
-  // p2 = (0, 2, -1) lies 1 behind the far hole wall y = 1 (normal -y), halfway down: the robot may stick there.
+  // p2 = (0, 2, -1) lies 1 behind the far hole wall y = 1 (normal -y), halfway down: the robot may stick
+  // there.
   int wall = -1;
   const auto info = nlohmann::json::parse(run("info " + task("hole") + " --atoms --json").out);
   for (const auto& a : info["atom_list"])
@@ -146,12 +147,41 @@ TEST(CmtSticking, DamperReportsSlidingCones) {
   ASSERT_EQ(r.status, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["model"], "damper");
-  // v1 points straight down with theta_v = .25 > atan(.25) = .245: wherever it presses, some admissible velocity
-  // leaves the friction cone (face cones, and summed cones toward their open side, have margin .245 there), so no
-  // atom must stick.
+  // v1 points straight down with theta_v = .25 > atan(.25) = .245: wherever it presses, some admissible
+  // velocity leaves the friction cone (face cones, and summed cones toward their open side, have margin .245
+  // there), so no atom must stick.
   for (const auto& f : j["faces"]) EXPECT_TRUE(f.contains("sliding"));
   EXPECT_EQ(j["counts"]["must"], 0);
   EXPECT_EQ(run("sticking " + task("hole") + " --motion nope --json").status, 2);
+}
+
+TEST(CmtVerify, TwoBlocksDamperStrategies) {
+  // down: theta_v = .25 > atan(.25), so the robot may slide off B's top and stop on B's top or the floor
+  // right of B, outside the goal (the gap floor): unreliable, exit 1, with the offending pieces listed.
+  const Result down = run("verify " + task("two_blocks") + " --strategy down --json");
+  ASSERT_EQ(down.status, 1);
+  const auto d = nlohmann::json::parse(down.out);
+  EXPECT_EQ(d["reliable"], false);
+  ASSERT_EQ(d["steps"].size(), 1u);
+  EXPECT_EQ(d["steps"][0]["motion"], "v1");
+  EXPECT_FALSE(d["steps"][0]["termination"].empty());
+  EXPECT_TRUE(d.contains("seconds"));
+  // slide: 45 degrees down-left from B's top; it can stick only in the corner where A's wall meets the gap
+  // floor.
+  const Result slide = run("verify " + task("two_blocks") + " --strategy slide --json");
+  ASSERT_EQ(slide.status, 0);
+  const auto s = nlohmann::json::parse(slide.out);
+  EXPECT_EQ(s["reliable"], true);
+  for (const auto& piece : s["steps"][0]["termination"]) {
+    ASSERT_TRUE(piece.contains("atom") && piece.contains("kind") && piece.contains("polygon"));
+    EXPECT_NE(piece["kind"], "face");  // the corner edge and its end vertices only
+  }
+}
+
+TEST(CmtVerify, SpringMotionsAreNotYetSupported) {
+  const Result r = run("verify " + task("hole") + " --strategy teach --json");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(run("verify " + task("hole") + " --strategy nope --json").status, 2);
 }
 
 }  // namespace
