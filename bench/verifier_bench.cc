@@ -26,7 +26,7 @@ void BM_AtomConesAndClassifyOnce(benchmark::State& state) {
   for (auto _ : state) {
     const cmt::AtomCones cones(t.cspace);
     for (int id = 0; id < cones.size(); ++id)
-      benchmark::DoNotOptimize(cmt::classify_damper(cones[id], v, t.task.uncertainty.theta_v));
+      benchmark::DoNotOptimize(cmt::classify_damper(cones, id, v, t.task.uncertainty.theta_v));
   }
 }
 
@@ -35,10 +35,10 @@ void BM_ClassifyDamperAllAtoms(benchmark::State& state) {
   const auto& t = hole();
   const cmt::AtomCones cones(t.cspace);
   cmt::Vec3 v = cmt::Vec3(0.3, 0.2, -1).normalized();
-  for (int id = 0; id < cones.size(); ++id) cmt::classify_damper(cones[id], v, t.task.uncertainty.theta_v);
+  for (int id = 0; id < cones.size(); ++id) cmt::classify_damper(cones, id, v, t.task.uncertainty.theta_v);
   for (auto _ : state)
     for (int id = 0; id < cones.size(); ++id)
-      benchmark::DoNotOptimize(cmt::classify_damper(cones[id], v, t.task.uncertainty.theta_v));
+      benchmark::DoNotOptimize(cmt::classify_damper(cones, id, v, t.task.uncertainty.theta_v));
 }
 
 void BM_SpringRegionsAllAtoms(benchmark::State& state) {

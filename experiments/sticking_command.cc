@@ -36,7 +36,7 @@ nlohmann::json sticking_json(const LoadedTask& lt, const Motion& motion) {
     if (spring)
       cls = classify_spring(spring_sticking_regions(c, id, u), motion.target);
     else
-      cls = classify_damper(cones[id], motion.target, u.theta_v);
+      cls = classify_damper(cones, id, motion.target, u.theta_v);
     ++counts[static_cast<int>(cls)];
     atoms.push_back({{"atom", id},
                      {"name", c.atom_name(id)},

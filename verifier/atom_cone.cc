@@ -46,7 +46,10 @@ FrictionCone atom_friction_cone(const CSpace& c, int atom_id) {
 
 AtomCones::AtomCones(const CSpace& cspace) {
   cones_.reserve(cspace.atom_count());
-  for (int id = 0; id < cspace.atom_count(); ++id) cones_.push_back(atom_friction_cone(cspace, id));
+  for (int id = 0; id < cspace.atom_count(); ++id) {
+    cones_.push_back(atom_friction_cone(cspace, id));
+    unique_.push_back(UniqueStick::for_atom(cspace, id));
+  }
 }
 
 }  // namespace cmt

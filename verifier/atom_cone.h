@@ -4,6 +4,7 @@
 
 #include "models/cspace.h"
 #include "models/friction_cone.h"
+#include "verifier/unique_stick.h"
 
 namespace cmt {
 
@@ -18,11 +19,15 @@ std::vector<Vec3> atom_points(const CSpace& cspace, int atom_id);
 class AtomCones {
  public:
   explicit AtomCones(const CSpace& cspace);
+  // The friction cone (Minkowski sum for edges and vertices): sticking is possible only inside it.
   const FrictionCone& operator[](int atom_id) const { return cones_[atom_id]; }
+  // Where sticking is the only Coulomb solution (verifier/unique_stick.h): "must" is decided against it.
+  const UniqueStick& unique(int atom_id) const { return unique_[atom_id]; }
   int size() const { return static_cast<int>(cones_.size()); }
 
  private:
   std::vector<FrictionCone> cones_;
+  std::vector<UniqueStick> unique_;
 };
 
 }  // namespace cmt

@@ -17,16 +17,25 @@ double angle_between(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-StickClass classify_damper(const FrictionCone& cone, const Vec3& v, double theta_v) {
-  // v_a ∈ −FC  ⟺  −v_a ∈ FC: test the cone(−v, theta_v) against the friction cone.
+// Slack on the unique-stick margin: directions this close to the boundary are "may".
+constexpr double kUniqueStickSlack = 1e-9;
+
+StickClass classify_damper(const FrictionCone& cone, const UniqueStick& unique, const Vec3& v,
+                           double theta_v) {
+  // v_a ∈ −FC  ⟺  −v_a ∈ FC: test the cone(−v, theta_v) against the friction cone for "never".
   const CircularCone velocities{-v.normalized(), theta_v};
-  if (cone.contains_cone(velocities)) return StickClass::kMust;
-  if (cone.may_intersect_cone(velocities)) return StickClass::kMay;
-  return StickClass::kNever;
+  if (!cone.may_intersect_cone(velocities)) return StickClass::kNever;
+  if (unique.margin(v) >= theta_v + kUniqueStickSlack) return StickClass::kMust;
+  return StickClass::kMay;
+}
+
+StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v) {
+  return classify_damper(cones[atom_id], cones.unique(atom_id), v, theta_v);
 }
 
 StickClass classify_damper(const CSpace& cspace, int atom_id, const Vec3& v, double theta_v) {
-  return classify_damper(atom_friction_cone(cspace, atom_id), v, theta_v);
+  return classify_damper(atom_friction_cone(cspace, atom_id), UniqueStick::for_atom(cspace, atom_id), v,
+                         theta_v);
 }
 
 bool SlidingCone::contains(const Vec3& d, const Vec3& normal) const {

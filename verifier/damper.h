@@ -4,14 +4,19 @@
 
 #include "models/cspace.h"
 #include "models/friction_cone.h"
+#include "verifier/atom_cone.h"
 #include "verifier/spring.h"
+#include "verifier/unique_stick.h"
 
 namespace cmt {
 
-// The actual velocity v_a lies in cone(v, theta_v) (§3.2.1); the robot sticks on an atom iff v_a lies in the
-// negative friction cone of the atom (Fig 3.5). must: cone(v, theta_v) ⊆ −FC (inner cone); never:
-// cone(v, theta_v) ∩ −FC = {0} (outer cone); may otherwise. Errors only go toward may.
-StickClass classify_damper(const FrictionCone& atom_cone, const Vec3& v, double theta_v);
+// The actual velocity v_a lies in cone(v, theta_v) (§3.2.1); a static solution exists iff v_a lies in the
+// negative friction cone of the atom (Fig 3.5). never: cone(v, theta_v) ∩ −FC = {0} (outer cone); must: every
+// v_a in the cone lies where sticking is the only Coulomb solution (UniqueStick, margin >= theta_v); may
+// otherwise. Errors only go toward may.
+StickClass classify_damper(const FrictionCone& atom_cone, const UniqueStick& unique, const Vec3& v,
+                           double theta_v);
+StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v);
 StickClass classify_damper(const CSpace& cspace, int atom_id, const Vec3& v, double theta_v);
 
 // Directions in which the robot may slide on a face (Alg 4.3), as an interval of azimuths about the face

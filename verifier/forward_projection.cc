@@ -72,7 +72,7 @@ class Projector {
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
-    for (int id = 0; id < c_.atom_count(); ++id) cls_.push_back(classify_damper(cones[id], v_, theta_v_));
+    for (int id = 0; id < c_.atom_count(); ++id) cls_.push_back(classify_damper(cones, id, v_, theta_v_));
     for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
     cone_ = flight_cone(v_, theta_v_, c_.scale());
     pend_region_.resize(nf_);
@@ -239,6 +239,16 @@ class Projector {
       FlightSource src;
       src.vertices = {exact(a)};
       if (iv.t1 > iv.t0) src.vertices.push_back(exact(b));
+      if (e.shape == EdgeShape::kConvex && e.faces.size() == 2) {
+        // At a convex edge the obstacle is the wedge behind both faces, so free space is the union of the two
+        // fronts: a segment from the edge that ends behind both planes entered the obstacle. One flight per
+        // front gives exactly that union.
+        for (int f : e.faces) {
+          src.keep_front = {r_.charts[f].plane};
+          absorb(fly(r_, src, cone_));
+        }
+        continue;
+      }
       src.keep_front = keep;
       absorb(fly(r_, src, cone_));
     }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "verifier/unique_stick.h"
+
 namespace cmt {
 namespace {
 
@@ -15,53 +17,65 @@ const Vec3 kUp = Vec3::UnitZ();
 // A unit vector at polar angle `polar` from −z, azimuth 0 (toward +x).
 Vec3 from_down(double polar) { return Vec3(std::sin(polar), 0, -std::cos(polar)); }
 
+// A face: the friction cone and the unique-stick set are the same circular cone.
+StickClass classify_face(const Vec3& n, double mu, const Vec3& v, double theta_v) {
+  return classify_damper(FrictionCone::face(n, mu), UniqueStick::face(n, mu), v, theta_v);
+}
+
 TEST(DamperStick, FaceCone) {
   const double mu = 0.25, phi = std::atan(mu);  // .2450
-  const FrictionCone face = FrictionCone::face(kUp, mu);
+  auto classify = [&](const Vec3& v, double theta_v) { return classify_face(kUp, mu, v, theta_v); };
   // Straight down: must stick while theta_v < phi, may when the velocity cone pokes out.
-  EXPECT_EQ(classify_damper(face, -kUp, 0.0), StickClass::kMust);
-  EXPECT_EQ(classify_damper(face, -kUp, 0.1), StickClass::kMust);
-  EXPECT_EQ(classify_damper(face, -kUp, 0.25), StickClass::kMay);
+  EXPECT_EQ(classify(-kUp, 0.0), StickClass::kMust);
+  EXPECT_EQ(classify(-kUp, 0.1), StickClass::kMust);
+  EXPECT_EQ(classify(-kUp, 0.25), StickClass::kMay);
   // At alpha from the inward normal: must iff alpha + theta_v < phi, never iff alpha − theta_v > phi.
-  EXPECT_EQ(classify_damper(face, from_down(0.5 * phi), 0.0), StickClass::kMust);
-  EXPECT_EQ(classify_damper(face, from_down(1.05 * phi), 0.0), StickClass::kNever);
-  EXPECT_EQ(classify_damper(face, from_down(phi + 0.2), 0.25), StickClass::kMay);
-  EXPECT_EQ(classify_damper(face, from_down(phi + 0.3), 0.25), StickClass::kNever);
+  EXPECT_EQ(classify(from_down(0.5 * phi), 0.0), StickClass::kMust);
+  EXPECT_EQ(classify(from_down(1.05 * phi), 0.0), StickClass::kNever);
+  EXPECT_EQ(classify(from_down(phi + 0.2), 0.25), StickClass::kMay);
+  EXPECT_EQ(classify(from_down(phi + 0.3), 0.25), StickClass::kNever);
   // Pulling away never sticks.
-  EXPECT_EQ(classify_damper(face, kUp, 0.25), StickClass::kNever);
+  EXPECT_EQ(classify(kUp, 0.25), StickClass::kNever);
 }
 
 TEST(DamperStick, FrictionlessAndLargeFriction) {
   // mu = 0: only the exact normal push is in the cone (a ray): never "must", may on the normal, never off it.
-  const FrictionCone slick = FrictionCone::face(kUp, 0.0);
-  EXPECT_EQ(classify_damper(slick, -kUp, 0.0), StickClass::kMay);
-  EXPECT_EQ(classify_damper(slick, from_down(0.01), 0.0), StickClass::kNever);
-  EXPECT_EQ(classify_damper(slick, from_down(0.01), 0.02), StickClass::kMay);
+  EXPECT_EQ(classify_face(kUp, 0.0, -kUp, 0.0), StickClass::kMay);
+  EXPECT_EQ(classify_face(kUp, 0.0, from_down(0.01), 0.0), StickClass::kNever);
+  EXPECT_EQ(classify_face(kUp, 0.0, from_down(0.01), 0.02), StickClass::kMay);
   // mu = 10: phi = 1.4711; alpha = 1.2 with theta_v = .25 stays inside (1.45 < 1.4711).
-  const FrictionCone grippy = FrictionCone::face(kUp, 10.0);
-  EXPECT_EQ(classify_damper(grippy, from_down(1.2), 0.25), StickClass::kMust);
-  EXPECT_EQ(classify_damper(grippy, from_down(1.3), 0.25), StickClass::kMay);
+  EXPECT_EQ(classify_face(kUp, 10.0, from_down(1.2), 0.25), StickClass::kMust);
+  EXPECT_EQ(classify_face(kUp, 10.0, from_down(1.3), 0.25), StickClass::kMay);
 }
 
-TEST(DamperStick, ConcaveEdgeUsesTheSummedCone) {
-  // Faces with normals +z and +x (a concave edge along y), mu = .25. The summed cone contains every direction
-  // within .2450 of either normal, the whole quarter-plane between them, and out of that plane at the
-  // bisector up to atan(y_max / sqrt 2) with y_max = 2 mu / sqrt(1 − mu^2) = .5164: .3502 rad.
-  const double phi = std::atan(0.25);
-  const FrictionCone edge = FrictionCone::sum({{kUp, phi}, {Vec3::UnitX(), phi}});
+TEST(DamperStick, ConcaveEdgeStickIsDecidedByTheKineticCone) {
+  // Faces with normals +z and +x (a concave edge along y), mu = .25. Sticking is possible in the summed cone,
+  // but it is the only Coulomb solution only in the kinetic cone |t| <= mu (N1 + N2) (plus each face's own
+  // cone where the other face separates): at the bisector the kinetic cone reaches y = 2 mu = .5 at (1, y,
+  // 1), atan(.5 / sqrt 2) = .3398 rad; the sum reaches 2 mu / sqrt(1 − mu^2) = .5164 (wedging).
+  const double mu = 0.25, phi = std::atan(mu);
+  const FrictionCone sum = FrictionCone::sum({{kUp, phi}, {Vec3::UnitX(), phi}});
+  const UniqueStick unique = UniqueStick::concave_edge(kUp, mu, Vec3::UnitX(), mu);
+  auto classify = [&](const Vec3& v, double theta_v) { return classify_damper(sum, unique, v, theta_v); };
   const Vec3 into_corner = -Vec3(1, 0, 1).normalized();
-  EXPECT_EQ(classify_damper(edge, into_corner, 0.25), StickClass::kMust);  // .25 < .3502
-  EXPECT_EQ(classify_damper(edge, into_corner, 0.40), StickClass::kMay);   // .40 > .3502
-  // Pushing only into the floor: the margin toward −x is the floor cone's .2450.
-  EXPECT_EQ(classify_damper(edge, -kUp, 0.2), StickClass::kMust);
-  EXPECT_EQ(classify_damper(edge, -kUp, 0.3), StickClass::kMay);
+  EXPECT_EQ(classify(into_corner, 0.25), StickClass::kMust);  // .25 < .3398
+  EXPECT_EQ(classify(into_corner, 0.40), StickClass::kMay);   // .40 > .3398
+  // Between the kinetic and the wedging limit both sticking and sliding are Coulomb solutions: may, not must.
+  EXPECT_EQ(classify(-Vec3(1, 0.51, 1), 0.0), StickClass::kMay);
+  EXPECT_EQ(classify(-Vec3(1, 0.49, 1), 0.0), StickClass::kMust);
+  EXPECT_EQ(classify(-Vec3(1, 0.53, 1), 0.0), StickClass::kNever);  // beyond the sum: no static solution
+  // Pushing only into the floor: pulling off the wall leaves the floor's cone (margin phi = .245); pressing
+  // the wall too meets the kinetic facet through (0, mu, -1) and (-1, mu, 0), whose plane is asin(.2357) =
+  // .2379 away.
+  EXPECT_EQ(classify(-kUp, 0.2), StickClass::kMust);
+  EXPECT_EQ(classify(-kUp, 0.3), StickClass::kMay);
   // Along the edge (y): never.
-  EXPECT_EQ(classify_damper(edge, Vec3::UnitY(), 0.25), StickClass::kNever);
+  EXPECT_EQ(classify(Vec3::UnitY(), 0.25), StickClass::kNever);
   // mu = 0 edge: a planar wedge; a push with any y component escapes it.
   const FrictionCone slick = FrictionCone::sum({{kUp, 0}, {Vec3::UnitX(), 0}});
-  EXPECT_EQ(classify_damper(slick, -Vec3(1, 0.2, 1).normalized(), 0.1),
-            StickClass::kNever);  // 0.1414 rad off
-  EXPECT_EQ(classify_damper(slick, -Vec3(1, 0.2, 1).normalized(), 0.15), StickClass::kMay);
+  const UniqueStick slick_unique = UniqueStick::concave_edge(kUp, 0, Vec3::UnitX(), 0);
+  EXPECT_EQ(classify_damper(slick, slick_unique, -Vec3(1, 0.2, 1).normalized(), 0.1), StickClass::kNever);
+  EXPECT_EQ(classify_damper(slick, slick_unique, -Vec3(1, 0.2, 1).normalized(), 0.15), StickClass::kMay);
 }
 
 TEST(DamperStick, VertexOfThreeFaces) {
@@ -69,8 +83,12 @@ TEST(DamperStick, VertexOfThreeFaces) {
   // .6155 from (1,1,1): a push into the corner with theta_v = .5 must stick; pulling out never does.
   const double phi = std::atan(0.25);
   const FrictionCone corner = FrictionCone::sum({{Vec3::UnitX(), phi}, {Vec3::UnitY(), phi}, {kUp, phi}});
-  EXPECT_EQ(classify_damper(corner, -Vec3(1, 1, 1).normalized(), 0.5), StickClass::kMust);
-  EXPECT_EQ(classify_damper(corner, Vec3(1, 1, 1).normalized(), 0.5), StickClass::kNever);
+  const UniqueStick unique = UniqueStick::corner(Vec3::UnitX(), Vec3::UnitY(), kUp);
+  // Pressing into all three faces, asin(1/sqrt 3) = .6155 from each coordinate plane: only sticking is
+  // possible.
+  EXPECT_EQ(classify_damper(corner, unique, -Vec3(1, 1, 1).normalized(), 0.5), StickClass::kMust);
+  EXPECT_EQ(classify_damper(corner, unique, -Vec3(1, 1, 1).normalized(), 0.7), StickClass::kMay);
+  EXPECT_EQ(classify_damper(corner, unique, Vec3(1, 1, 1).normalized(), 0.5), StickClass::kNever);
 }
 
 TEST(SlidingCone, NoSlidingWhenTheVelocityConeIsInside) {
@@ -132,19 +150,19 @@ TEST(SlidingCone, LeavingTheFaceBoundsTheCone) {
 }
 
 TEST(DamperStick, ConvexEdgeOfTheHoleRim) {
-  // The rim edge between the top face (+z) and the hole wall (+x): summed cone as for a concave edge, mu =
-  // .48. Pushing diagonally into the obstacle corner, −(1,0,1), with theta_v = .25: must (the quarter-plane
-  // between the normals has margin pi/4 + phi in-plane and more than theta_v out of plane: for mu = .48 the
-  // bisector's out-of-plane reach is atan((2 mu / sqrt(1 − mu^2)) / sqrt 2) = .6587). Straight down (only
-  // into the top face) with theta_v = .5 > phi = .4475: the margin toward −x is phi, so may.
+  // The rim edge between the top face (+z) and the hole wall (+x), mu = .48. Buckley's edge cone is the same
+  // sum as for a concave edge, so a diagonal push −(1,0,1) admits a static solution. But at a convex edge the
+  // contact may act through either face: on the top face alone the push has tangential/normal ratio 1 > mu
+  // and slides over the rim, on the wall alone likewise. Sticking is unique only inside both faces' cones
+  // (empty here, the normals are pi/2 apart and 2 phi = .895 < pi/2): never "must".
   const double phi = std::atan(0.48);
   const FrictionCone rim = FrictionCone::sum({{kUp, phi}, {Vec3::UnitX(), phi}});
-  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.25), StickClass::kMust);
-  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.64), StickClass::kMust);
-  EXPECT_EQ(classify_damper(rim, -Vec3(1, 0, 1).normalized(), 0.68), StickClass::kMay);
-  EXPECT_EQ(classify_damper(rim, -kUp, 0.5), StickClass::kMay);
-  // Sliding off the rim into the hole (velocity +x, down a little): leaves the cone entirely.
-  EXPECT_EQ(classify_damper(rim, Vec3(1, 0, -0.2).normalized(), 0.25), StickClass::kNever);
+  const UniqueStick unique = UniqueStick::intersection({kUp, Vec3::UnitX()}, {0.48, 0.48});
+  EXPECT_EQ(classify_damper(rim, unique, -Vec3(1, 0, 1).normalized(), 0.0), StickClass::kMay);
+  EXPECT_EQ(classify_damper(rim, unique, -Vec3(1, 0, 1).normalized(), 0.25), StickClass::kMay);
+  EXPECT_EQ(classify_damper(rim, unique, -kUp, 0.1), StickClass::kMay);
+  // Sliding off the rim into the hole (velocity +x, down a little): outside the sum, never.
+  EXPECT_EQ(classify_damper(rim, unique, Vec3(1, 0, -0.2).normalized(), 0.25), StickClass::kNever);
 }
 
 }  // namespace
