@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   cmt::CommandState state;
   cmt::add_info_command(app, state);
   cmt::add_export_mjcf_command(app, state);
+  cmt::add_rollout_command(app, state);
+  cmt::add_calibrate_friction_command(app, state);
   cmt::add_sticking_command(app, state);
   cmt::add_verify_command(app, state);
 

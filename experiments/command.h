@@ -14,6 +14,8 @@ struct CommandState {
 
 void add_info_command(CLI::App& app, CommandState& state);
 void add_export_mjcf_command(CLI::App& app, CommandState& state);
+void add_rollout_command(CLI::App& app, CommandState& state);
+void add_calibrate_friction_command(CLI::App& app, CommandState& state);
 void add_sticking_command(CLI::App& app, CommandState& state);
 void add_verify_command(CLI::App& app, CommandState& state);
 

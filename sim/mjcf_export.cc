@@ -118,6 +118,77 @@ struct Writer {
   }
 };
 
+// True when `region` lies inside the union U of the C-space boxes and (with bounds) the outside of the
+// bounds: the solid part of configuration space. Exact for axis-aligned boxes: the region is cut into the
+// cells of the grid of every box and bounds coordinate inside it, and each cell (its centre) is tested.
+bool inside_solid(const AxisBox& region, const std::vector<AxisBox>& boxes,
+                  const std::optional<AxisBox>& bounds) {
+  std::vector<double> cuts[3];
+  for (int k = 0; k < 3; ++k) {
+    cuts[k] = {region.min[k], region.max[k]};
+    auto add = [&](double c) {
+      if (c > region.min[k] && c < region.max[k]) cuts[k].push_back(c);
+    };
+    for (const AxisBox& b : boxes) {
+      add(b.min[k]);
+      add(b.max[k]);
+    }
+    if (bounds) {
+      add(bounds->min[k]);
+      add(bounds->max[k]);
+    }
+    std::sort(cuts[k].begin(), cuts[k].end());
+    cuts[k].erase(std::unique(cuts[k].begin(), cuts[k].end()), cuts[k].end());
+  }
+  for (std::size_t i = 0; i + 1 < cuts[0].size(); ++i)
+    for (std::size_t j = 0; j + 1 < cuts[1].size(); ++j)
+      for (std::size_t l = 0; l + 1 < cuts[2].size(); ++l) {
+        const Vec3 c(0.5 * (cuts[0][i] + cuts[0][i + 1]), 0.5 * (cuts[1][j] + cuts[1][j + 1]),
+                     0.5 * (cuts[2][l] + cuts[2][l + 1]));
+        bool solid =
+            bounds && ((c.array() < bounds->min.array()).any() || (c.array() > bounds->max.array()).any());
+        for (std::size_t b = 0; b < boxes.size() && !solid; ++b)
+          solid = (c.array() > boxes[b].min.array()).all() && (c.array() < boxes[b].max.array()).all();
+        if (!solid) return false;
+      }
+  return true;
+}
+
+// Seam closing (docs/mujoco-scene.md "Seams"). Shrinking every C-space box by h keeps the union exact, but
+// where two boxes share a face (or a box meets the bounds) the shrunk geoms leave a slot exactly 2h wide
+// between them: the interiors of the pieces do not cover their common face, MuJoCo collides the cube with
+// each geom separately, and the cube slides into the slot without resistance (measured: a cube pushed down
+// at a seam of the hole task's top surface sank 0.4 in in 0.4 s). Each box is therefore grown by 2h into
+// every neighbouring solid (direction by direction, -x +x -y +y -z +z, keeping the grown box inside the
+// solid union), so that every contact face of the scene continues at least h past a seam or concave edge.
+// The union of the geoms, and so the contact configurations, do not change.
+std::vector<AxisBox> grow_into_neighbours(const Task& task, double grow) {
+  std::vector<AxisBox> solids;
+  for (const ConvexPart& p : task.cspace)
+    if (p.shape == ConvexPart::Shape::kBox) solids.push_back(p.box);
+  std::vector<AxisBox> out;
+  for (const ConvexPart& p : task.cspace) {
+    AxisBox b = bounding_box(p);
+    if (p.shape == ConvexPart::Shape::kBox) {
+      for (int k = 0; k < 3; ++k)
+        for (int side = 0; side < 2; ++side) {
+          AxisBox slab = b;
+          if (side == 0) {
+            slab.max[k] = b.min[k];
+            slab.min[k] = b.min[k] - grow;
+          } else {
+            slab.min[k] = b.max[k];
+            slab.max[k] = b.max[k] + grow;
+          }
+          if (inside_solid(slab, solids, task.bounds))
+            (side == 0 ? b.min[k] : b.max[k]) = side == 0 ? slab.min[k] : slab.max[k];
+        }
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
 constexpr char kEnvRgba[] = "0.55 0.57 0.62 1";
 constexpr char kWallRgba[] = "0.8 0.8 0.85 0.15";
 constexpr char kRobotRgba[] = "0.9 0.45 0.2 1";
@@ -175,7 +246,14 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   // tunnel through at simulated speeds.
   const double wall = 0.2 * scale;
   const double s = meters_per_unit(task.units);
-  if (info) *info = SceneInfo{s, h, task.bounds ? wall : 0.0, cspace_form};
+  // The C-space boxes as emitted before shrinking by h: grown into their neighbours (seams), or as given.
+  std::vector<AxisBox> grown;
+  if (cspace_form && options.close_seams) {
+    grown = grow_into_neighbours(task, 2 * h);
+  } else if (cspace_form) {
+    for (const ConvexPart& p : task.cspace) grown.push_back(bounding_box(p));
+  }
+  if (info) *info = SceneInfo{s, h, task.bounds ? wall : 0.0, cspace_form, grown};
 
   Writer w;
   w.s = s;
@@ -244,9 +322,19 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
     for (std::size_t i = 0; i < task.cspace.size(); ++i) {
       const ConvexPart& p = task.cspace[i];
       const std::string name = "cspace" + std::to_string(i);
-      if (p.shape == ConvexPart::Shape::kBox)
-        w.box(name, p.key + ", shrunk by h", p.box, h, p.friction, 0, kPartBit, kEnvRgba, in2);
-      else
+      if (p.shape == ConvexPart::Shape::kBox) {
+        std::string note = p.key;
+        static const char* const kDir[3][2] = {{"-x", "+x"}, {"-y", "+y"}, {"-z", "+z"}};
+        std::string grown_dirs;
+        for (int k = 0; k < 3; ++k) {
+          if (grown[i].min[k] < p.box.min[k])
+            grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][0];
+          if (grown[i].max[k] > p.box.max[k])
+            grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][1];
+        }
+        if (!grown_dirs.empty()) note += ", grown by 2h into its neighbours (" + grown_dirs + ")";
+        w.box(name, note + ", shrunk by h", grown[i], h, p.friction, 0, kPartBit, kEnvRgba, in2);
+      } else
         w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
     }
   } else {

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "models/loaded_task.h"
 
@@ -31,6 +32,11 @@ struct MjcfOptions {
   double solref_timesteps = 2.0;
   // Constraint impedance d (solimp dmin = dmax): fraction of the constraint force that is rigid.
   double solimp = 0.99;
+  // C-space form: grow every C-space box by 2h into neighbouring solids (other boxes, the outside of the
+  // bounds) before shrinking it by h, so that the robot cube cannot slip into the 2h slots that shrinking
+  // leaves between boxes that share a face (docs/mujoco-scene.md "Seams"). Off only for tests that show the
+  // slots.
+  bool close_seams = true;
 };
 
 // Facts about an exported scene that a simulator needs to interpret it.
@@ -40,6 +46,9 @@ struct SceneInfo {
       0;                      // half size h of the reference cube (task units): the robot in C-space form
   double wall_thickness = 0;  // thickness of the bounds walls before shrinking (task units); 0 without bounds
   bool cspace_form = false;   // true: robot = cube of half size h, C-space parts shrunk by h
+  // C-space form: per task.cspace part, the box emitted before shrinking by h (task units): the part's box
+  // grown into its neighbours (MjcfOptions::close_seams), or the bounding box of a convex part.
+  std::vector<AxisBox> cspace_boxes;
 };
 
 // The MJCF text. Throws std::runtime_error if a convex C-space part is too thin to be represented.

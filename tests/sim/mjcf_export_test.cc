@@ -233,11 +233,18 @@ class Probe {
     return dist;
   }
 
-  // The deepest penetration (task units) of p into a C-obstacle or a wall; <= 0 when in none.
+  // The deepest penetration (task units) of p into a C-obstacle or a wall; <= 0 when in none. C-space box
+  // parts are emitted grown into their neighbours (seam closing, docs/mujoco-scene.md "Seams"): MuJoCo
+  // measures the depth in the grown box, which the exporter reports in SceneInfo::cspace_boxes.
   double expected_penetration(const Vec3& p) const {
     double best = -std::numeric_limits<double>::infinity();
-    for (const ConvexObstacle& ob : task_.cspace.obstacles())
-      best = std::max(best, depth(ob.normals, ob.offsets, p));
+    const auto& obstacles = task_.cspace.obstacles();
+    for (std::size_t i = 0; i < obstacles.size(); ++i) {
+      const ConvexObstacle& ob = obstacles[i];
+      const bool grown_box = info_.cspace_form && task_.task.cspace[i].shape == ConvexPart::Shape::kBox;
+      best =
+          std::max(best, grown_box ? box_depth(info_.cspace_boxes[i], p) : depth(ob.normals, ob.offsets, p));
+    }
     for (const AxisBox& w : walls_) best = std::max(best, box_depth(w, p));
     return best;
   }
@@ -456,6 +463,77 @@ TEST(MjcfExport, ConvexScenesAgreeAwayFromTheBoundary) {
   }
 }
 
+// The deepest contact (normal pointing toward the robot, depth in task units) with the robot at p.
+struct DeepestContact {
+  bool found = false;
+  Vec3 normal = Vec3::Zero();
+  double depth = 0;
+};
+
+DeepestContact deepest_contact(const mjModel* m, mjData* d, const Vec3& p, double s) {
+  for (int k = 0; k < 3; ++k) d->qpos[k] = p[k] * s;
+  mujoco_call([&] { mj_forward(m, d); });
+  const int robot = mj_name2id(m, mjOBJ_BODY, "robot");
+  DeepestContact best;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    const double depth = -2 * c.dist / s;  // box-box: dist is minus half the overlap
+    if (best.found && depth <= best.depth) continue;
+    Vec3 n(c.frame[0], c.frame[1], c.frame[2]);
+    if (m->geom_bodyid[c.geom1] == robot) n = -n;  // frame normal points from geom1 to geom2
+    best = {true, n, depth};
+  }
+  return best;
+}
+
+// Seams (docs/mujoco-scene.md "Seams"): where C-space boxes share a face, or meet the bounds, the robot
+// cube pressed slightly into the surface must be pushed back out along the surface normal. Checked at
+// points of every flat edge (the lines where coplanar faces meet, e.g. the hole task's top surface split
+// into four faces) and every concave edge, pushed into the obstacle by 1e-6 of the scene. Without seam
+// closing, MuJoCo pushes sideways there (the cube slid into the 2h slot between the boxes).
+TEST(MjcfExport, SeamsAndConcaveEdgesPushBackAlongTheFaceNormal) {
+  int checked = 0;
+  for (const std::string& yaml : std::vector<std::string>{test::kHoleYaml, kUnboundedYaml}) {
+    const auto task = load_task_from_string(yaml, "seams.yaml");
+    SCOPED_TRACE(task->task.name);
+    for (const bool close : {true, false}) {
+      MjcfOptions options;
+      options.close_seams = close;
+      SceneInfo info;
+      const auto model = MujocoModel::load_xml_string(mjcf_xml(*task, options, &info));
+      MujocoData data(model);
+      const double s = info.meters_per_unit, eps = 1e-6 * task->cspace.scale();
+      int wrong = 0, points = 0;
+      for (const Face& f : task->cspace.faces())
+        for (const int e : f.edges) {
+          const Edge& edge = task->cspace.edges()[task->cspace.atom_index(e)];
+          if (edge.shape != EdgeShape::kFlat && edge.shape != EdgeShape::kConcave) continue;
+          for (const double t : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+            const Vec3 p = edge.a + t * (edge.b - edge.a) - eps * f.normal;
+            const DeepestContact c = deepest_contact(model->get(), data.get(), p, s);
+            ++points;
+            // The depth is checked loosely: box-box contacts report half the overlap inside a face but the
+            // whole overlap where the contact reaches a box edge (seen here: 2 eps along the walls).
+            const bool right =
+                c.found && (c.normal - f.normal).norm() < 1e-9 && c.depth > 0.9 * eps && c.depth < 2.1 * eps;
+            wrong += !right;
+            if (close) {
+              EXPECT_TRUE(right) << "face " << f.id << ", edge " << e << " at " << p.transpose()
+                                 << ": normal " << c.normal.transpose() << ", depth " << c.depth
+                                 << " (expected " << f.normal.transpose() << ", " << eps << ")";
+            }
+          }
+        }
+      if (close) {
+        checked += points;
+      } else {
+        EXPECT_GT(wrong, 0) << "the slots between shrunk boxes should show without seam closing";
+      }
+    }
+  }
+  EXPECT_GT(checked, 50);
+}
+
 TEST(MjcfExport, HalfSizeAndShrinking) {
   const auto hole = load_task_from_string(test::kHoleYaml, "hole.yaml");
   SceneInfo info;
@@ -466,12 +544,24 @@ TEST(MjcfExport, HalfSizeAndShrinking) {
   EXPECT_DOUBLE_EQ(info.meters_per_unit, 0.0254);
   const auto model = MujocoModel::load_xml_string(xml);
   const mjModel* m = model->get();
-  // cspace[2] = [-1,1] x [-6,-1] x [-2,0] in, shrunk by 0.5 in, in metres.
+  // cspace[2] = C = [-1,1] x [-6,-1] x [-2,0] in, grown by 2h = 1 in into its neighbours A (-x), B (+x) and
+  // the outside of the bounds (-y, -z), not toward the hole (+y) or free space (+z): [-2,2] x [-7,-1] x
+  // [-3,0]; then shrunk by 0.5 in: half sizes 1.5, 2.5, 1 in, centre (0, -4, -1.5) in; in metres.
   const int g = mj_name2id(m, mjOBJ_GEOM, "cspace2");
   ASSERT_GE(g, 0);
-  EXPECT_NEAR(m->geom_size[3 * g + 0], 0.5 * 0.0254, 1e-15);
-  EXPECT_NEAR(m->geom_size[3 * g + 1], 2.0 * 0.0254, 1e-15);
-  EXPECT_NEAR(m->geom_pos[3 * g + 1], -3.5 * 0.0254, 1e-15);
+  EXPECT_NEAR(m->geom_size[3 * g + 0], 1.5 * 0.0254, 1e-15);
+  EXPECT_NEAR(m->geom_size[3 * g + 1], 2.5 * 0.0254, 1e-15);
+  EXPECT_NEAR(m->geom_size[3 * g + 2], 1.0 * 0.0254, 1e-15);
+  EXPECT_NEAR(m->geom_pos[3 * g + 1], -4.0 * 0.0254, 1e-15);
+  EXPECT_NEAR(m->geom_pos[3 * g + 2], -1.5 * 0.0254, 1e-15);
+  // Without seam closing: the box itself shrunk by 0.5 in.
+  MjcfOptions plain;
+  plain.close_seams = false;
+  const auto plain_model = MujocoModel::load_xml_string(mjcf_xml(*hole, plain));
+  const mjModel* pm0 = plain_model->get();
+  EXPECT_NEAR(pm0->geom_size[3 * g + 0], 0.5 * 0.0254, 1e-15);
+  EXPECT_NEAR(pm0->geom_size[3 * g + 1], 2.0 * 0.0254, 1e-15);
+  EXPECT_NEAR(pm0->geom_pos[3 * g + 1], -3.5 * 0.0254, 1e-15);
   const int cube = mj_name2id(m, mjOBJ_GEOM, "robot_cube");
   ASSERT_GE(cube, 0);
   EXPECT_EQ(m->geom_contype[cube], 3);

@@ -1,0 +1,68 @@
+// cmt calibrate-friction: the simulated robot against Coulomb's law (sim/calibration.h, docs/rollouts.md).
+#include <iostream>
+
+#include "experiments/cli_output.h"
+#include "experiments/command.h"
+#include "sim/calibration.h"
+
+namespace cmt {
+
+nlohmann::json calibration_json(const CalibrationResult& r) {
+  nlohmann::json cases = nlohmann::json::array();
+  for (const CalibrationCase& c : r.cases)
+    cases.push_back({{"geometry", c.geometry},
+                     {"motion", c.motion},
+                     {"controller", controller_form_name(c.form)},
+                     {"mu", c.mu},
+                     {"ratio", c.ratio},
+                     {"reference", c.reference},
+                     {"alpha", c.alpha},
+                     {"expected", c.expected},
+                     {"observed", c.observed},
+                     {"command_speed", c.command_speed},
+                     {"creep", c.creep},
+                     {"speed", c.speed},
+                     {"analytic_speed", c.analytic_speed},
+                     {"speed_error", c.speed_error},
+                     {"max_penetration", c.max_penetration},
+                     {"agree", c.agree},
+                     {"passed", c.passed}});
+  return {{"cases", cases},
+          {"agree", r.agree},
+          {"passed", r.passed},
+          {"max_creep", r.max_creep},
+          {"max_speed_error", r.max_speed_error},
+          {"max_penetration", r.max_penetration},
+          {"face", {{"max_creep", r.max_face_creep}, {"max_speed_error", r.max_face_speed_error}}},
+          {"edge", {{"max_creep", r.max_edge_creep}, {"max_speed_error", r.max_edge_speed_error}}},
+          {"ambiguous", r.ambiguous},
+          {"criteria",
+           {{"max_creep", kMaxCreep},
+            {"max_speed_error", kMaxSpeedError},
+            {"max_penetration", kMaxPenetration},
+            {"command_speed_in_per_s", kCalibrationSpeed}}},
+          {"seconds", r.seconds}};
+}
+
+void add_calibrate_friction_command(CLI::App& app, CommandState& state) {
+  auto* cmd = app.add_subcommand(
+      "calibrate-friction",
+      "Check the simulated robot against Coulomb friction on a face and in a concave edge");
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([&state] {
+    const CalibrationResult r = calibrate_friction();
+    if (state.json) {
+      print_json(calibration_json(r));
+    } else {
+      int failed = 0;
+      for (const CalibrationCase& c : r.cases) failed += !c.passed && c.expected != "ambiguous";
+      std::cout << r.cases.size() << " cases (" << r.ambiguous << " ambiguous), " << failed
+                << " failed; agree " << (r.agree ? "yes" : "no") << ", max creep " << r.max_creep << " (face "
+                << r.max_face_creep << "), max speed error " << r.max_speed_error << " (face "
+                << r.max_face_speed_error << "), max penetration " << r.max_penetration << " m\n";
+    }
+    state.exit_status = r.passed ? kExitSuccess : kExitFailureFound;
+  });
+}
+
+}  // namespace cmt

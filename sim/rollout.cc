@@ -1,0 +1,441 @@
+// Rollout engine (docs/rollouts.md). Per control step (one MuJoCo step, 1 kHz):
+//   1. sense: true position and velocity from qpos / qvel, plus the motion's sensing offset; the contact
+//   force
+//      of the previous step (qfrc_constraint: with slide joints x, y, z it is the Cartesian force on the
+//      robot), turned by the force-direction error;
+//   2. the controller maps the sensed state to a velocity command; the velocity error turns its drive part;
+//   3. mj_step1, then qfrc_applied = b_s v_cmd + qfrc_bias (the servo; qfrc_bias is gravity, which this adds
+//      back: the robot is gravity-compensated as Buckley's gravity-free first-order model assumes, §3.1,
+//      whatever the scene's gravity), then mj_step2;
+//   4. record the contact force, penetration and stability checks; the termination monitor decides.
+#include "sim/rollout.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "models/polygon_distance.h"
+#include "sim/mujoco_guard.h"
+
+namespace cmt {
+
+namespace {
+
+const char* const kWarningNames[mjNWARNING] = {"inertia",
+                                               "contact buffer full",
+                                               "constraint buffer full",
+                                               "vgeom full",
+                                               "bad qpos",
+                                               "bad qvel",
+                                               "bad qacc",
+                                               "bad ctrl"};
+
+Vec3 polygon_normal(const std::vector<Vec3>& polygon) {
+  // Newell's method: the normal about which the polygon's own vertex order is counter-clockwise.
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % polygon.size()];
+    n += Vec3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+              (a.x() - b.x()) * (a.y() + b.y()));
+  }
+  return n.normalized();
+}
+
+}  // namespace
+
+double distance_to_region(const Vec3& p, const Region& region) {
+  switch (region.kind) {
+    case Region::Kind::kPoint:
+      return (p - region.points.at(0)).norm();
+    case Region::Kind::kSegment:
+      return distance_to_segment(p, region.points.at(0), region.points.at(1));
+    case Region::Kind::kPolygon:
+      return distance_to_convex_polygon(p, region.points, polygon_normal(region.points));
+  }
+  return 0;
+}
+
+Vec3 sample_region(const Region& region, SampleMode mode, Rng& rng) {
+  const std::vector<Vec3>& v = region.points;
+  if (region.kind == Region::Kind::kPoint) return v.at(0);
+  if (mode == SampleMode::kExtreme && uniform01(rng) < kExtremeBoundaryFraction) {
+    if (uniform01(rng) < 0.5) return v[uniform_index(rng, static_cast<int>(v.size()))];
+    // Uniform on the boundary by length (a segment's boundary for this purpose is the segment itself).
+    const std::size_t edges = region.kind == Region::Kind::kSegment ? 1 : v.size();
+    std::vector<double> cumulative;
+    double total = 0;
+    for (std::size_t i = 0; i < edges; ++i)
+      cumulative.push_back(total += (v[(i + 1) % v.size()] - v[i]).norm());
+    const double t = uniform01(rng) * total;
+    std::size_t i = std::upper_bound(cumulative.begin(), cumulative.end(), t) - cumulative.begin();
+    i = std::min(i, edges - 1);
+    const double before = i == 0 ? 0 : cumulative[i - 1];
+    const double length = cumulative[i] - before;
+    const double u = length > 0 ? (t - before) / length : 0;
+    return v[i] + u * (v[(i + 1) % v.size()] - v[i]);
+  }
+  if (region.kind == Region::Kind::kSegment) return v[0] + uniform01(rng) * (v[1] - v[0]);
+  // Convex polygon: a triangle of the fan from v[0], chosen by area, then uniform in it.
+  std::vector<double> cumulative;
+  double total = 0;
+  for (std::size_t i = 1; i + 1 < v.size(); ++i)
+    cumulative.push_back(total += 0.5 * (v[i] - v[0]).cross(v[i + 1] - v[0]).norm());
+  const double t = uniform01(rng) * total;
+  std::size_t i = std::upper_bound(cumulative.begin(), cumulative.end(), t) - cumulative.begin();
+  i = std::min(i, cumulative.size() - 1);
+  double a = uniform01(rng), b = uniform01(rng);
+  if (a + b > 1) {
+    a = 1 - a;
+    b = 1 - b;
+  }
+  return v[0] + a * (v[i + 1] - v[0]) + b * (v[i + 2] - v[0]);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// RolloutScene
+
+std::shared_ptr<const RolloutScene> RolloutScene::build(std::shared_ptr<const LoadedTask> task,
+                                                        const SimOptions& options) {
+  SceneInfo info;
+  const std::string xml = mjcf_xml(*task, options.scene, &info);
+  auto scene = std::shared_ptr<RolloutScene>(new RolloutScene());
+  scene->task_ = std::move(task);
+  scene->model_ = MujocoModel::load_xml_string(xml);
+  scene->info_ = info;
+  scene->options_ = options;
+  scene->init();
+  return scene;
+}
+
+std::shared_ptr<const RolloutScene> RolloutScene::build(std::shared_ptr<const LoadedTask> task,
+                                                        std::shared_ptr<const MujocoModel> model,
+                                                        const SimOptions& options) {
+  SceneInfo info;
+  mjcf_xml(*task, options.scene, &info);
+  auto scene = std::shared_ptr<RolloutScene>(new RolloutScene());
+  scene->task_ = std::move(task);
+  scene->model_ = std::move(model);
+  scene->info_ = info;
+  scene->options_ = options;
+  scene->init();
+  return scene;
+}
+
+void RolloutScene::init() {
+  const mjModel* m = model_->get();
+  static const char* const kJoints[3] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, kJoints[k]);
+    if (j < 0) throw std::runtime_error(std::string("the scene has no joint '") + kJoints[k] + "'");
+    qpos_[k] = m->jnt_qposadr[j];
+    dof_[k] = m->jnt_dofadr[j];
+  }
+  geom_is_box_.resize(m->ngeom);
+  for (int g = 0; g < m->ngeom; ++g) geom_is_box_[g] = m->geom_type[g] == mjGEOM_BOX;
+  servo_damping_si_ = m->dof_damping[dof_[0]];
+  const double s = info_.meters_per_unit;
+  const double mass = m->body_mass[mj_name2id(m, mjOBJ_BODY, "robot")];
+  // Controllers work in task units with forces in newtons: b_s in N per (task unit / s) = b [N s / m] x s.
+  params_.servo_damping = servo_damping_si_ * s;
+  params_.servo_time_constant = mass / servo_damping_si_;
+  params_.damper_speed = options_.damper_speed_per_scale * task_->cspace.scale();
+  params_.spring_rate = options_.spring_rate;
+  params_.max_speed = options_.max_speed_per_scale * task_->cspace.scale();
+  params_.step =
+      task_->task.uncertainty.step > 0 ? task_->task.uncertainty.step : task_->task.uncertainty.eps_p;
+  if (params_.step <= 0) params_.step = 0.01 * task_->cspace.scale();
+  params_.position_gain = options_.position_gain;
+  params_.via_time = options_.via_time_constants / options_.position_gain;
+}
+
+double RolloutScene::timestep() const { return model_->get()->opt.timestep; }
+
+double RolloutScene::timeout(const Motion& motion, const Vec3& from) const {
+  if (motion.kind == Motion::Kind::kDamper)
+    return options_.damper_timeout_scales * task_->cspace.scale() / params_.damper_speed;
+  const double distance = (motion.target - from).norm();
+  const double reach = distance + task_->cspace.scale();
+  if (options_.form == ControllerForm::kPosition) {
+    const double vias = distance / params_.step + 1;
+    return 3 * vias * params_.via_time + options_.spring_timeout_time_constants *
+                                             std::max(1 / params_.position_gain, reach / params_.max_speed);
+  }
+  return distance / params_.max_speed + options_.spring_timeout_time_constants *
+                                            std::max(1 / params_.spring_rate, reach / params_.max_speed);
+}
+
+double RolloutScene::goal_distance(const Vec3& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Region& r : task_->task.goal) best = std::min(best, distance_to_region(p, r));
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// RolloutRunner
+
+struct RolloutRunner::Impl {
+  std::shared_ptr<const RolloutScene> scene;
+  MujocoData data;
+  Vec3 force = Vec3::Zero();  // contact force of the last step, N
+  double penetration = 0;     // of the last step, task units
+  std::string failure;        // why the last step was unstable ("" = fine)
+  std::vector<Vec3>* applied_sink = nullptr;
+
+  explicit Impl(std::shared_ptr<const RolloutScene> s) : scene(std::move(s)), data(scene->model()) {}
+
+  Vec3 position() const {
+    const mjData* d = data.get();
+    const double s = scene->meters_per_unit();
+    return Vec3(d->qpos[scene->qpos_[0]], d->qpos[scene->qpos_[1]], d->qpos[scene->qpos_[2]]) / s;
+  }
+  Vec3 velocity() const {
+    const mjData* d = data.get();
+    const double s = scene->meters_per_unit();
+    return Vec3(d->qvel[scene->dof_[0]], d->qvel[scene->dof_[1]], d->qvel[scene->dof_[2]]) / s;
+  }
+
+  void reset(const Vec3& p) {
+    const mjModel* m = scene->model()->get();
+    mjData* d = data.get();
+    mj_resetData(m, d);  // also clears qacc_warmstart and the warning counters: replays are exact
+    for (int k = 0; k < 3; ++k) d->qpos[scene->qpos_[k]] = p[k] * scene->meters_per_unit();
+    force.setZero();
+    penetration = 0;
+    failure.clear();
+  }
+
+  // One control step with velocity command v_cmd (task units / s). Returns false if the step was unstable.
+  bool step(const Vec3& v_cmd) {
+    const mjModel* m = scene->model()->get();
+    mjData* d = data.get();
+    const double gain = scene->servo_damping_si_ * scene->meters_per_unit();  // N per (unit / s)
+    const double f0 = gain * v_cmd[0], f1 = gain * v_cmd[1], f2 = gain * v_cmd[2];
+    const int* dof = scene->dof_;
+    try {
+      mujoco_call([&] {
+        mj_step1(m, d);
+        d->qfrc_applied[dof[0]] = f0 + d->qfrc_bias[dof[0]];
+        d->qfrc_applied[dof[1]] = f1 + d->qfrc_bias[dof[1]];
+        d->qfrc_applied[dof[2]] = f2 + d->qfrc_bias[dof[2]];
+        mj_step2(m, d);
+      });
+    } catch (const MujocoError& e) {
+      failure = e.what();
+      return false;
+    }
+    if (applied_sink)
+      applied_sink->emplace_back(d->qfrc_applied[dof[0]], d->qfrc_applied[dof[1]], d->qfrc_applied[dof[2]]);
+    force = Vec3(d->qfrc_constraint[dof[0]], d->qfrc_constraint[dof[1]], d->qfrc_constraint[dof[2]]);
+    double deepest = 0;
+    for (int i = 0; i < d->ncon; ++i) {
+      const mjContact& c = d->contact[i];
+      // Box-box contacts report minus half the overlap (docs/mujoco-scene.md), others the overlap.
+      const bool boxes = scene->geom_is_box_[c.geom1] && scene->geom_is_box_[c.geom2];
+      deepest = std::max(deepest, -(boxes ? 2 : 1) * c.dist);
+    }
+    penetration = deepest / scene->meters_per_unit();
+    for (int w = 0; w < mjNWARNING; ++w)
+      if (d->warning[w].number > 0) {
+        failure = std::string("MuJoCo warning: ") + kWarningNames[w];
+        return false;
+      }
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(d->qpos[scene->qpos_[k]]) || !std::isfinite(d->qvel[scene->dof_[k]])) {
+        failure = "non-finite state";
+        return false;
+      }
+    if (penetration > scene->unstable_penetration()) {
+      failure = "penetration " + std::to_string(penetration) + " beyond tolerance " +
+                std::to_string(scene->unstable_penetration());
+      return false;
+    }
+    if (scene->task().task.bounds) {
+      const AxisBox& b = *scene->task().task.bounds;
+      const Vec3 p = position();
+      const double t = scene->unstable_penetration();
+      if ((p.array() < b.min.array() - t).any() || (p.array() > b.max.array() + t).any()) {
+        failure = "left the bounds";
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+RolloutRunner::RolloutRunner(std::shared_ptr<const RolloutScene> scene)
+    : impl_(std::make_unique<Impl>(std::move(scene))) {}
+
+RolloutRunner::~RolloutRunner() = default;
+
+void RolloutRunner::record_applied_forces(std::vector<Vec3>* sink) { impl_->applied_sink = sink; }
+
+void RolloutRunner::drive(const Vec3& position, const Motion& motion, double duration,
+                          const std::function<void(const StepState&)>& observer) {
+  Impl& s = *impl_;
+  s.reset(position);
+  const RolloutScene& scene = *s.scene;
+  auto controller = make_controller(motion, scene.options().form, scene.controller_params(), position);
+  const double dt = scene.timestep();
+  const long steps = std::lround(duration / dt);
+  for (long i = 0; i < steps; ++i) {
+    Sensed sensed;
+    sensed.time = static_cast<double>(i) * dt;
+    sensed.position = s.position();
+    sensed.velocity = s.velocity();
+    sensed.force = s.force;
+    const ServoCommand c = controller->update(sensed);
+    const bool ok = s.step(c.drive + c.feedback);
+    ++total_steps_;
+    StepState st;
+    st.time = static_cast<double>(i + 1) * dt;
+    st.position = s.position();
+    st.velocity = s.velocity();
+    st.force = s.force;
+    st.contacts = s.data.get()->ncon;
+    st.penetration = s.penetration;
+    if (observer) observer(st);
+    if (!ok) throw std::runtime_error("unstable simulation: " + s.failure);
+  }
+}
+
+RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, int index) {
+  Impl& s = *impl_;
+  const RolloutScene& scene = *s.scene;
+  const LoadedTask& lt = scene.task();
+  const SimOptions& options = scene.options();
+  const double dt = scene.timestep();
+  Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(index));
+  const ErrorSampler sampler(lt.task.uncertainty, options.mode, lt.task.dimension == 2);
+
+  RolloutOutcome out;
+  out.index = index;
+  out.start = sample_region(lt.task.start, options.mode, rng);
+  s.reset(out.start);
+  double rollout_time = 0;
+  bool all_terminated = true;
+
+  for (std::size_t mi = 0; mi < strategy.motions.size(); ++mi) {
+    const Motion* motion = lt.task.find_motion(strategy.motions[mi]);
+    if (motion == nullptr)
+      throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" +
+                                  strategy.motions[mi] + "'");
+    MotionOutcome mo;
+    mo.motion = motion->name;
+    MotionErrors errors(sampler, rng, options.switch_interval);
+    const Vec3 start = s.position();
+    auto controller =
+        make_controller(*motion, options.form, scene.controller_params(), start + errors.sensing_offset(),
+                        [&] { return sampler.positioning_error(rng); });
+    auto spec_it = options.terminations.find(motion->name);
+    TerminationMonitor monitor(spec_it == options.terminations.end() ? TerminationSpec{} : spec_it->second,
+                               controller->reference_speed(), controller->guard_force(), dt);
+    const long limit = std::lround(scene.timeout(*motion, start) / dt);
+    std::optional<Termination> end;
+    long step = 0;
+    for (; step < limit && !end; ++step) {
+      const double t = static_cast<double>(step) * dt;
+      errors.advance(t, rng);
+      Sensed sensed;
+      sensed.time = t;
+      sensed.position = s.position() + errors.sensing_offset();
+      sensed.velocity = s.velocity();
+      sensed.force = errors.force().apply(s.force);
+      end = monitor.update(sensed, controller->plan_complete());
+      if (end) break;
+      const ServoCommand c = controller->update(sensed);
+      if (controller->stopped_by_force()) {
+        end = Termination::kSticking;
+        break;
+      }
+      const bool stable = s.step(errors.velocity().apply(c.drive) + c.feedback);
+      mo.max_penetration = std::max(mo.max_penetration, s.penetration);
+      if (!stable) {
+        end = Termination::kUnstable;
+        ++step;
+        break;
+      }
+      if (options.record_trajectory && step % options.trajectory_stride == 0)
+        out.trajectory.push_back({rollout_time + t + dt, static_cast<int>(mi), s.position(), sensed.position,
+                                  s.data.get()->ncon > 0});
+    }
+    total_steps_ += step;
+    mo.steps = step;
+    mo.sim_time = static_cast<double>(step) * dt;
+    rollout_time += mo.sim_time;
+    mo.termination = end.value_or(Termination::kNone);
+    mo.end = s.position();
+    mo.atom = lt.cspace.nearest_atom(mo.end, scene.atom_tolerance());
+    mo.contact_force = s.force;
+    mo.velocity_switches = errors.switches();
+    mo.replans = controller->replans();
+    out.motions.push_back(mo);
+    if (mo.termination == Termination::kUnstable) {
+      out.unstable = true;
+      out.unstable_reason = "motion '" + motion->name + "': " + s.failure;
+    }
+    if (mo.termination == Termination::kNone || mo.termination == Termination::kUnstable) {
+      all_terminated = false;
+      break;  // a motion that did not terminate ends the strategy (a real robot would stop with an error)
+    }
+  }
+  out.end = s.position();
+  out.atom =
+      out.motions.empty() ? lt.cspace.nearest_atom(out.end, scene.atom_tolerance()) : out.motions.back().atom;
+  out.termination = out.motions.empty() ? Termination::kSticking : out.motions.back().termination;
+  out.success = all_terminated && !out.unstable && scene.goal_distance(out.end) <= scene.atom_tolerance();
+  return out;
+}
+
+std::vector<RolloutOutcome> run_rollouts(std::shared_ptr<const RolloutScene> scene, const Strategy& strategy,
+                                         int n, std::uint64_t seed, int threads,
+                                         const std::function<void(int)>& progress) {
+  if (n < 0) throw std::invalid_argument("run_rollouts: n must be >= 0");
+  threads = std::max(1, std::min(threads, std::max(1, n)));
+  std::vector<RolloutOutcome> results(static_cast<std::size_t>(n));
+  std::atomic<int> next{0}, done{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    try {
+      RolloutRunner runner(scene);
+      for (int i; (i = next.fetch_add(1)) < n;) {
+        results[static_cast<std::size_t>(i)] = runner.run(strategy, seed, i);
+        done.fetch_add(1);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next.store(n);  // stop the others
+    }
+  };
+  std::vector<std::thread> pool;
+  if (progress) {
+    // All rollouts on worker threads; the calling thread only reports progress.
+    std::atomic<int> running{threads};
+    for (int t = 0; t < threads; ++t)
+      pool.emplace_back([&] {
+        worker();
+        running.fetch_sub(1);
+      });
+    while (running.load() > 0) {
+      progress(done.load());
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  } else {
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+  }
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  if (progress) progress(done.load());
+  return results;
+}
+
+}  // namespace cmt

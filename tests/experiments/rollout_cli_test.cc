@@ -1,0 +1,129 @@
+// End-to-end tests of `cmt rollout` and `cmt calibrate-friction`: JSON fields of contracts.md, exit
+// statuses, bad input, and results independent of the thread count.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::string task(const std::string& name) {
+  return std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml";
+}
+
+TEST(CmtRollout, HoleTeachReportsTheContractFields) {
+  const Result r = run("rollout " + task("hole") + " --strategy teach -n 8 --seed 3 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;  // every rollout succeeded
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["rollouts"], 8);
+  EXPECT_EQ(j["successes"], 8);
+  EXPECT_EQ(j["unstable"], 0);
+  ASSERT_EQ(j["outcomes"].size(), 8u);
+  for (const auto& o : j["outcomes"]) {
+    for (const char* key : {"start", "end", "atom", "termination", "success"})
+      EXPECT_TRUE(o.contains(key)) << key;
+    EXPECT_EQ(o["start"].size(), 3u);
+    EXPECT_EQ(o["end"].size(), 3u);
+    EXPECT_EQ(o["termination"], "sticking");
+    EXPECT_EQ(o["kind"], "face");
+    EXPECT_TRUE(o["success"].get<bool>());
+    EXPECT_EQ(o["motions"].size(), 2u);
+  }
+}
+
+TEST(CmtRollout, TooDeepFailsSomewhereAndExitsWithOne) {
+  const Result r = run("rollout " + task("hole") + " --strategy teach_too_deep -n 30 --seed 1 --json");
+  ASSERT_EQ(r.status, 1) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LT(j["successes"].get<int>(), 30);
+}
+
+TEST(CmtRollout, OutcomesDoNotDependOnTheThreadCount) {
+  const std::string base =
+      "rollout " + task("hole") + " --strategy teach -n 6 --seed 11 --mode extreme --json";
+  const auto a = nlohmann::json::parse(run(base + " --threads 1").out);
+  const auto b = nlohmann::json::parse(run(base + " --threads 2").out);
+  EXPECT_EQ(a["outcomes"].dump(), b["outcomes"].dump());
+  EXPECT_EQ(a["mode"], "extreme");
+}
+
+TEST(CmtRollout, WritesCsvAndTrajectories) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cmt_rollout_cli_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto csv = dir / "r.csv", traj = dir / "t.csv";
+  const Result r = run("rollout " + task("hole") + " --strategy teach -n 2 --seed 1 --csv " + csv.string() +
+                       " --trajectories " + traj.string() + " --json");
+  ASSERT_EQ(r.status, 0);
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("rollout,success,unstable,start_x", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 4);  // 2 rollouts x 2 motions
+  std::ifstream t(traj);
+  int points = 0;
+  while (std::getline(t, line)) ++points;
+  EXPECT_GT(points, 100);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CmtRollout, BadInputExitsWithTwoAndNamesTheKey) {
+  struct Case {
+    std::string args, key;
+  };
+  const std::vector<Case> cases = {
+      {"--strategy nope -n 5", "strategies"},
+      {"--strategy teach -n 0", "-n"},
+      {"--strategy teach -n -3", "-n"},
+      {"--strategy teach -n 5 --mode sideways", "--mode"},
+      {"--strategy teach -n 5 --controller magic", "--controller"},
+      {"--strategy teach -n 5 --threads -1", "--threads"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run("rollout " + task("hole") + " " + c.args + " --json");
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_NE(r.out.find(c.key), std::string::npos) << c.args << ": " << r.out;
+  }
+  // The position-controller form implements springs only: a damper strategy is bad input.
+  const Result d =
+      run("rollout " + task("two_blocks") + " --strategy slide -n 2 --controller position --json");
+  EXPECT_EQ(d.status, 2);
+  EXPECT_NE(d.out.find("motions.v2"), std::string::npos) << d.out;
+}
+
+TEST(CmtCalibrateFriction, ReportsTheCriteria) {
+  const Result r = run("calibrate-friction --json");
+  ASSERT_TRUE(r.status == 0 || r.status == 1) << r.status;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"cases", "agree", "max_creep", "max_speed_error", "max_penetration"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_GT(j["cases"].size(), 200u);
+  EXPECT_TRUE(j["agree"].get<bool>());
+  EXPECT_EQ(r.status, j["passed"].get<bool>() ? 0 : 1);
+}
+
+}  // namespace
