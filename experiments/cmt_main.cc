@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   cmt::add_calibrate_friction_command(app, state);
   cmt::add_sticking_command(app, state);
   cmt::add_verify_command(app, state);
+  cmt::add_check_sticking_command(app, state);
 
   bool wants_json = false;
   for (int i = 1; i < argc; ++i) wants_json = wants_json || std::string(argv[i]) == "--json";

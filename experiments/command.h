@@ -18,5 +18,6 @@ void add_rollout_command(CLI::App& app, CommandState& state);
 void add_calibrate_friction_command(CLI::App& app, CommandState& state);
 void add_sticking_command(CLI::App& app, CommandState& state);
 void add_verify_command(CLI::App& app, CommandState& state);
+void add_check_sticking_command(CLI::App& app, CommandState& state);
 
 }  // namespace cmt
