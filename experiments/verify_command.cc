@@ -35,23 +35,37 @@ nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>
   return out;
 }
 
+// A spring motion's free-space rest ball (not an atom).
+nlohmann::json free_piece_json(const LoadedTask& lt, const VerifyStep& s) {
+  return {{"atom", -1},
+          {"name", "free"},
+          {"kind", "free"},
+          {"center", point_json(s.free_center, lt.task.dimension)},
+          {"radius", s.free_radius}};
+}
+
 }  // namespace
 
 nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double seconds) {
   nlohmann::json steps = nlohmann::json::array();
-  for (const VerifyStep& s : r.steps)
+  for (const VerifyStep& s : r.steps) {
+    nlohmann::json termination = pieces_json(lt, s.termination.pieces());
+    if (s.free_termination) termination.push_back(free_piece_json(lt, s));
     steps.push_back({{"motion", s.motion},
-                     {"termination", pieces_json(lt, s.termination.pieces())},
+                     {"termination", termination},
                      {"may_not_terminate", s.may_not_terminate},
                      {"fallback", s.fallback},
                      {"fixpoint_steps", s.fixpoint_steps},
                      {"reached_area", s.reached_area}});
+  }
   nlohmann::json out = {
       {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;
     out["outside_goal"] = pieces_json(lt, r.outside_goal);
+    if (r.failed_step >= 0 && r.steps[r.failed_step].free_termination)
+      out["outside_goal"].push_back(free_piece_json(lt, r.steps[r.failed_step]));
   }
   return out;
 }
@@ -61,7 +75,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     std::string task, strategy, motion;
   };
   auto options = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper motions (Buckley ch. 4)");
+  auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
   cmd->add_option("TASK", options->task, "task YAML file")->required();
   auto* strategy =
       cmd->add_option("--strategy", options->strategy, "strategy name (from the task's strategies)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "models/friction_cone.h"
@@ -153,18 +154,16 @@ StickClass classify_spring(const SpringStickingRegions& regions, const Vec3& com
   return StickClass::kNever;
 }
 
-FaceStickingConfigurations face_sticking_configurations(const Face& face, const Vec3& p,
-                                                        const Uncertainty& u) {
-  FaceStickingConfigurations out;
+FaceStickingRadii face_sticking_radii(const Face& face, const Vec3& p, const Uncertainty& u) {
+  FaceStickingRadii out;
   const double phi = std::atan(face.friction);
   const double h = face.offset - face.normal.dot(p);  // depth of p below the face plane (negative: above)
-  const Vec3 p_proj = p + h * face.normal;
+  out.center = p + h * face.normal;
   // Weak: x with angle(p − x̂, −n) <= phi + theta_v for some |x̂ − x| <= eps_s, i.e. x within eps_s of the cone
   // p + cone(n, psi). On the plane that is a disk about p' whose radius solves dist(x, cone) = eps_s.
   const double psi = phi + u.theta_v;
-  double r_weak = -1;
   if (psi >= kHalfPi) {
-    r_weak = 1e300;  // concave case: the whole face may stick (sound over-approximation)
+    out.weak = std::numeric_limits<double>::infinity();  // concave case: the whole face may stick (sound)
   } else {
     auto dist_to_cone = [&](double rho) {  // x at radius rho from p' on the plane
       const double along = h, across = rho;
@@ -181,25 +180,28 @@ FaceStickingConfigurations face_sticking_configurations(const Face& face, const 
         const double mid = 0.5 * (lo + hi);
         (dist_to_cone(mid) <= u.eps_s ? lo : hi) = mid;
       }
-      r_weak = hi;  // the upper end of the bracket: outer
+      out.weak = hi;  // the upper end of the bracket: outer
     }
-  }
-  if (r_weak >= 0) {
-    if (r_weak > 1e299)
-      out.weak = face.polygon;
-    else
-      out.weak =
-          clip_convex_polygon(face.polygon, disk_polygon(p_proj, face.normal, r_weak, true), face.normal);
   }
   // Strong: B(x, eps_s) inside p + cone(n, phi − theta_v), i.e. x in p + (eps_s / sin(phi − theta_v)) n +
   // that cone: a disk of radius (h − eps_s / sin(phi − theta_v)) tan(phi − theta_v).
   const double alpha = phi - u.theta_v;
-  if (alpha > 0) {
-    const double r_strong = (h - u.eps_s / std::sin(alpha)) * std::tan(alpha);
-    if (r_strong > 0)
-      out.strong =
-          clip_convex_polygon(face.polygon, disk_polygon(p_proj, face.normal, r_strong, false), face.normal);
-  }
+  if (alpha > 0) out.strong = (h - u.eps_s / std::sin(alpha)) * std::tan(alpha);
+  return out;
+}
+
+FaceStickingConfigurations face_sticking_configurations(const Face& face, const Vec3& p,
+                                                        const Uncertainty& u) {
+  FaceStickingConfigurations out;
+  const FaceStickingRadii r = face_sticking_radii(face, p, u);
+  if (std::isinf(r.weak))
+    out.weak = face.polygon;
+  else if (r.weak >= 0)
+    out.weak =
+        clip_convex_polygon(face.polygon, disk_polygon(r.center, face.normal, r.weak, true), face.normal);
+  if (r.strong > 0)
+    out.strong =
+        clip_convex_polygon(face.polygon, disk_polygon(r.center, face.normal, r.strong, false), face.normal);
   return out;
 }
 

@@ -51,4 +51,12 @@ struct FaceStickingConfigurations {
 FaceStickingConfigurations face_sticking_configurations(const Face& face, const Vec3& commanded,
                                                         const Uncertainty& u);
 
+// The disks behind FaceStickingConfigurations, about p' (the projection of the commanded position onto the
+// face's plane): weak radius (< 0: none; infinity: the whole plane), strong radius (<= 0: none).
+struct FaceStickingRadii {
+  Vec3 center;
+  double weak = -1, strong = 0;
+};
+FaceStickingRadii face_sticking_radii(const Face& face, const Vec3& commanded, const Uncertainty& u);
+
 }  // namespace cmt

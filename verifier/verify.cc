@@ -4,6 +4,7 @@
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
 #include "verifier/forward_projection.h"
+#include "verifier/spring_projection.h"
 
 namespace cmt {
 
@@ -12,25 +13,46 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
   for (const std::string& name : names) {
     const Motion* m = lt.task.find_motion(name);
     if (!m) throw TaskError(lt.task.source_file, "motions", "no motion named '" + name + "'");
-    if (m->kind == Motion::Kind::kSpring)
-      throw UnsupportedMotion(
-          name, "unsupported: spring forward projection not implemented yet (motion '" + name + "')");
     motions.push_back(m);
   }
   VerifyResult out;
   const AtomCones cones(lt.cspace);
   ReachedSet current = ReachedSet::from_region(lt, lt.task.start);
   for (std::size_t i = 0; i < motions.size(); ++i) {
-    DamperProjection p = forward_project_damper(lt, cones, current, motions[i]->target);
-    VerifyStep step{motions[i]->name, p.termination, p.may_not_terminate,
-                    p.fallback,       p.steps,       p.reached.area()};
-    out.steps.push_back(std::move(step));
-    if (p.may_not_terminate) {
+    VerifyStep step{motions[i]->name, ReachedSet(lt.cspace)};
+    if (motions[i]->kind == Motion::Kind::kSpring) {
+      SpringProjection p = forward_project_spring(lt, current, motions[i]->target);
+      step.termination = std::move(p.termination);
+      step.may_not_terminate = p.may_not_terminate;
+      step.fallback = p.fallback;
+      step.fixpoint_steps = p.steps;
+      step.reached_area = p.reached.area();
+      step.free_termination = p.free_termination;
+      step.free_center = p.free_center;
+      step.free_radius = p.free_radius;
+    } else {
+      DamperProjection p = forward_project_damper(lt, cones, current, motions[i]->target);
+      step.termination = std::move(p.termination);
+      step.may_not_terminate = p.may_not_terminate;
+      step.fallback = p.fallback;
+      step.fixpoint_steps = p.steps;
+      step.reached_area = p.reached.area();
+    }
+    out.steps.push_back(step);
+    if (step.may_not_terminate) {
       out.failed_step = static_cast<int>(i);
       out.failure = "motion '" + motions[i]->name + "' may never terminate: no reached atom can stick";
       return out;
     }
-    current = std::move(p.termination);
+    if (step.free_termination) {
+      // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either
+      // way.
+      out.failed_step = static_cast<int>(i);
+      out.failure =
+          "motion '" + motions[i]->name + "' may come to rest in free space near its commanded position";
+      return out;
+    }
+    current = out.steps.back().termination;
   }
   if (out.steps.empty()) {
     out.failure = "empty strategy";

@@ -1,6 +1,6 @@
 // Verification of a decision-free strategy (Buckley §4.2): chain the motions' simulations (the termination
 // set of one motion is the start of the next) and check that the final termination set lies in the goal.
-// Only generalized-damper motions are simulated so far.
+// Generalized-damper and generalized-spring motions are simulated.
 #pragma once
 
 #include <stdexcept>
@@ -12,7 +12,7 @@
 
 namespace cmt {
 
-// A motion the verifier cannot simulate yet (spring forward projection).
+// A motion the verifier cannot simulate (none at present; kept for the CLI's exit-2 path).
 class UnsupportedMotion : public std::runtime_error {
  public:
   UnsupportedMotion(const std::string& motion, const std::string& what)
@@ -30,6 +30,11 @@ struct VerifyStep {
   bool fallback = false;           // the fixpoint fell back to "everything reached"
   int fixpoint_steps = 0;
   double reached_area = 0;  // area of the reached face regions (diagnostics)
+  // Spring motions: the robot may come to rest in free space within free_radius of free_center (the
+  // commanded position). Never inside a goal (goals are contact regions): the strategy fails there.
+  bool free_termination = false;
+  Vec3 free_center = Vec3::Zero();
+  double free_radius = 0;
 };
 
 struct VerifyResult {

@@ -214,9 +214,20 @@ TEST(TwoBlocks, SlideIsReliable) {
   EXPECT_TRUE(corner_edge);
 }
 
-TEST(Verify, SpringMotionsAreReportedUnsupported) {
+TEST(Verify, CubeSpringStickIsReliable) {
+  // cube: inside [-1,1]^3, mu = .25, theta_v = .25, eps_s = eps_p = .2; p1 = (0,0,-3), 2 below the floor.
+  // Only the floor and its edges can stick: every wall and the ceiling have p strictly in front (the pull
+  // leaves them: no weak sticking), the vertical edges and the ceiling edges have p in front of both faces.
+  // The floor's weak disk about (0,0,-1) (h = 2, radius 2 tan(.245 + .25) + .2 / cos(.495) = 1.31) and the
+  // floor-wall edges lie in the closed goal (the floor); p is 2 > max(eps_p, eps_s) from free space: no free
+  // rest. Reliable.
   const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
-  EXPECT_THROW(verify_strategy(*t, *t->task.find_strategy("stick")), UnsupportedMotion);
+  const VerifyResult r = verify_strategy(*t, *t->task.find_strategy("stick"));
+  EXPECT_TRUE(r.reliable) << r.failure;
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_FALSE(r.steps[0].free_termination);
+  for (const ReachedPiece& p : r.steps[0].termination.pieces())
+    for (const Vec3& q : p.polygon) EXPECT_NEAR(q.z(), -1, 1e-9) << t->cspace.atom_name(p.atom);
 }
 
 }  // namespace

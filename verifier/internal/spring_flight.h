@@ -1,0 +1,43 @@
+// Private to verifier/ .cc files: the generalized spring's free-space reach (Buckley §3.3, Fig 3.13; §4.4)
+// and its in-plane sliding strip (Fig 3.14), computed exactly in face charts (docs/verifier.md, "Spring").
+#pragma once
+
+#include <vector>
+
+#include "verifier/internal/flight.h"
+
+namespace cmt::fp {
+
+// Sides of the polygons circumscribing the eps_t disks and the overshoot disk (outer approximations).
+inline constexpr int kSpringDiskSides = 24;
+// Layers of the eps_t slab about a target plane (tighter than one slab; see spring_flight.cc).
+inline constexpr int kSpringSlabLayers = 4;
+// Relative slack on every radius and projected direction built with floating-point arithmetic.
+inline constexpr double kSpringRelativeSlack = 1e-9;
+// Below this cosine the overshoot directions are not bounded by a cap: a polytope about the whole eps_o ball
+// about p is used instead.
+inline constexpr double kSpringMinCapCosine = 0.1;
+
+// Generators of a convex set containing every point of seg[x, p + eps_o u(x)], x in conv(source), u(x) the
+// unit direction from x to p: the source vertices, p, and p + (eps_o / c) u_i (c = min_i u_i . mean
+// direction), or the corners of the cube of half-width eps_o about p when c < kSpringMinCapCosine.
+std::vector<Point3> spring_generators(const std::vector<Point3>& source, const Vec3& p, double eps_o);
+
+// Free-space reach: for every face g but `source_face`, g ∩ (conv(gens) ⊕ ball(eps_t)), an outer
+// approximation from kSpringSlabLayers slabs (exact sections, projected orthogonally onto g's plane, each
+// grown by its in-plane radius bound). Occlusion is not subtracted (spring paths bend: sound, looser).
+std::vector<FlightHit> spring_fly(const ReachedSet::Impl& geometry, const std::vector<Point3>& gens,
+                                  int source_face, double eps_t);
+
+// Sliding strip on face `face_index` from the convex chart piece `part` toward p' (Fig 3.14): the face ∩
+// (conv(part ∪ p' ∪ overshoot points) ⊕ disk(eps_t)), the overshoot points built in the plane as in
+// spring_generators.
+Points2 spring_strip(const ReachedSet::Impl& geometry, int face_index, const Points2& part,
+                     const Vec3& p_proj, double eps_t, double eps_o);
+
+// Convex chart polygon circumscribing (outer) or inscribed in (inner) the disk of radius r about `center` in
+// the face's plane.
+Points2 chart_disk(const ReachedSet::Impl& geometry, int face_index, const Vec3& center, double r,
+                   bool outer);
+
+}  // namespace cmt::fp

@@ -1,0 +1,210 @@
+// The generalized spring's free-space reach and sliding strip (verifier/internal/spring_flight.h).
+//
+// Free space (Fig 3.13): a trajectory from x commanded to p stays within eps_t of seg[x, p + eps_o u(x)]
+// (the eps_t cylinder about the line toward p, overshooting p by at most eps_o). For a convex source X with
+// vertices x_i, the overshoot points p + eps_o u with u in the cone of the u_i lie in conv(p, p + (eps_o / c)
+// u_i) (|w| >= c for w in conv(u_i)), so V = conv(gens) ⊕ ball(eps_t) holds every trajectory from X.
+//
+// Section of V by a target plane H (unit normal n): y in H is in V iff some g in conv(gens) has |g − y| <=
+// eps_t. With t = |(g − H) . n| in [t_k, t_{k+1}] (t_k = k eps_t / m), the in-plane distance from y to the
+// orthogonal projection of g is <= sqrt(eps_t^2 − t_k^2). So V ∩ H ⊆ ∪_k proj_H(conv(gens) ∩ slab(t_{k+1}))
+// ⊕ disk(sqrt(eps_t^2 − t_k^2)). conv(gens) ∩ slab is the hull of the generators inside and the crossings of
+// generator pairs with the slab planes (exact); the projection is exact; the disks are circumscribed
+// polygons.
+#include "verifier/internal/spring_flight.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cmt::fp {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+FT value(const Plane3& p, const Point3& x) { return p.a() * x.x() + p.b() * x.y() + p.c() * x.z() + p.d(); }
+
+// Overshoot points p + (eps_o / c) u_i for unit directions u_i (doubles), or nothing when the cap bound
+// fails.
+std::vector<Vec3> overshoot_points(const std::vector<Vec3>& from, const Vec3& p, double eps_o, double scale) {
+  std::vector<Vec3> dirs;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& x : from) {
+    const Vec3 d = p - x;
+    if (d.norm() <= 1e-9 * scale) return {};
+    dirs.push_back(d.normalized());
+    mean += dirs.back();
+  }
+  if (dirs.empty() || mean.norm() == 0) return {};
+  mean.normalize();
+  double c = 1;
+  for (const Vec3& u : dirs) c = std::min(c, u.dot(mean));
+  if (c < kSpringMinCapCosine) return {};
+  const double reach = eps_o / c * (1 + kSpringRelativeSlack);
+  std::vector<Vec3> out = {p};
+  for (const Vec3& u : dirs) out.push_back(p + reach * u);
+  return out;
+}
+
+void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
+  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  *u = n.cross(helper).normalized();
+  *w = n.cross(*u);
+}
+
+// Chart offsets of a polygon circumscribing the disk of radius r in the plane with normal n.
+std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r) {
+  Vec3 u, w;
+  face_frame(n, &u, &w);
+  const double R = r / std::cos(kPi / kSpringDiskSides) * (1 + kSpringRelativeSlack);
+  std::vector<Vector2> out;
+  for (int k = 0; k < kSpringDiskSides; ++k) {
+    const double a = 2 * kPi * k / kSpringDiskSides;
+    out.push_back(chart.project_direction(R * (std::cos(a) * u + std::sin(a) * w)));
+  }
+  return out;
+}
+
+Points2 minkowski(const Points2& convex, const std::vector<Vector2>& offsets) {
+  Points2 pts;
+  for (const Point2& a : convex)
+    for (const Vector2& d : offsets) pts.push_back(a + d);
+  return convex_hull(pts);
+}
+
+}  // namespace
+
+std::vector<Point3> spring_generators(const std::vector<Point3>& source, const Vec3& p, double eps_o) {
+  std::vector<Vec3> from;
+  Vec3 lo = p, hi = p;
+  for (const Point3& x : source) {
+    from.push_back(to_vec(x));
+    lo = lo.cwiseMin(from.back());
+    hi = hi.cwiseMax(from.back());
+  }
+  std::vector<Point3> gens = source;
+  std::vector<Vec3> extra = overshoot_points(from, p, eps_o, std::max(1.0, (hi - lo).norm()));
+  if (extra.empty()) {
+    const double h = eps_o * (1 + kSpringRelativeSlack);
+    for (int k = 0; k < 8; ++k) extra.push_back(p + Vec3(k & 1 ? h : -h, k & 2 ? h : -h, k & 4 ? h : -h));
+  }
+  for (const Vec3& q : extra) gens.push_back(exact(q));
+  return gens;
+}
+
+std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<Point3>& gens, int source_face,
+                                  double eps_t) {
+  const CSpace& c = *g.cspace;
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Point3& x : gens) {
+    lo = lo.cwiseMin(to_vec(x));
+    hi = hi.cwiseMax(to_vec(x));
+  }
+  const double pad = eps_t * 2 + 1e-9 * c.scale();
+  std::vector<FlightHit> hits;
+  for (std::size_t gi = 0; gi < c.faces().size(); ++gi) {
+    if (static_cast<int>(gi) == source_face) continue;
+    const Face& face = c.faces()[gi];
+    Vec3 flo = Vec3::Constant(1e300), fhi = Vec3::Constant(-1e300);
+    for (const Vec3& q : face.polygon) {
+      flo = flo.cwiseMin(q);
+      fhi = fhi.cwiseMax(q);
+    }
+    bool meets = true;
+    for (int k = 0; k < 3; ++k) meets = meets && flo[k] <= hi[k] + pad && lo[k] <= fhi[k] + pad;
+    if (!meets) continue;
+    // Cheap rejection: every generator farther than eps_t from the plane on one side (doubles, with margin).
+    double dmin = 1e300, dmax = -1e300;
+    for (const Point3& x : gens) {
+      const double dist = face.normal.dot(to_vec(x)) - face.offset;
+      dmin = std::min(dmin, dist);
+      dmax = std::max(dmax, dist);
+    }
+    const double band = eps_t * (1 + 1e-6) + 1e-9 * c.scale();
+    if (dmin > band || dmax < -band) continue;
+    const FaceChart& chart = g.charts[gi];
+    const Plane3& H = chart.plane;
+    const FT nn = H.a() * H.a() + H.b() * H.b() + H.c() * H.c();
+    const double norm_up = std::sqrt(CGAL::to_double(nn)) * (1 + kSpringRelativeSlack);
+    std::vector<FT> s(gens.size());
+    for (std::size_t i = 0; i < gens.size(); ++i) s[i] = value(H, gens[i]);
+    auto project = [&](const Point3& q) {
+      const FT k = value(H, q) / nn;
+      return chart.project(Point3(q.x() - k * H.a(), q.y() - k * H.b(), q.z() - k * H.c()));
+    };
+    PolygonSet2 region;
+    Points2 lower;
+    const int layers = eps_t > 0 ? kSpringSlabLayers : 1;
+    for (int k = 0; k < layers; ++k) {
+      const FT T = FT(eps_t * (k + 1) / layers * norm_up);
+      Points2 pts;
+      for (std::size_t i = 0; i < gens.size(); ++i) {
+        if (CGAL::abs(s[i]) <= T) pts.push_back(project(gens[i]));
+        for (std::size_t j = 0; j < gens.size(); ++j)
+          for (const FT& level : {T, FT(-T)}) {
+            if (s[i] > level && s[j] < level) {
+              const FT f = (s[i] - level) / (s[i] - s[j]);
+              pts.push_back(project(gens[i] + (gens[j] - gens[i]) * f));
+            }
+          }
+      }
+      if (pts.empty()) continue;
+      Points2 slab = convex_hull(pts);
+      if (slab.empty()) slab = {pts[0]};
+      const double t_k = eps_t * k / layers;
+      const double radius = std::sqrt(std::max(0.0, eps_t * eps_t - t_k * t_k));
+      Points2 grown = radius > 0 ? minkowski(slab, disk_offsets(chart, face.normal, radius)) : slab;
+      grown = clip(grown, g.face_polygon[gi]);
+      if (grown.size() >= 3)
+        region.join(to_polygon(grown));
+      else if (!grown.empty() && lower.empty())
+        lower = grown;
+    }
+    if (region.is_empty() && lower.empty()) continue;
+    FlightHit hit;
+    hit.face = static_cast<int>(gi);
+    hit.region = std::move(region);
+    if (hit.region.is_empty()) hit.lower = std::move(lower);
+    hits.push_back(std::move(hit));
+  }
+  return hits;
+}
+
+Points2 chart_disk(const ReachedSet::Impl& g, int fi, const Vec3& center, double r, bool outer) {
+  const FaceChart& chart = g.charts[fi];
+  const Face& face = g.cspace->faces()[fi];
+  if (outer) {
+    const Points2 c = {chart.project(center)};
+    return minkowski(c, disk_offsets(chart, face.normal, r));
+  }
+  Vec3 u, w;
+  face_frame(face.normal, &u, &w);
+  // Inscribed, pulled in by the slack: the chart image of a polygon inside the disk.
+  const double R = r * (1 - 1e3 * kSpringRelativeSlack);
+  Points2 pts;
+  for (int k = 0; k < kSpringDiskSides; ++k) {
+    const double a = 2 * kPi * k / kSpringDiskSides;
+    pts.push_back(chart.project(center) + chart.project_direction(R * (std::cos(a) * u + std::sin(a) * w)));
+  }
+  return convex_hull(pts);
+}
+
+Points2 spring_strip(const ReachedSet::Impl& g, int fi, const Points2& part, const Vec3& p_proj, double eps_t,
+                     double eps_o) {
+  const FaceChart& chart = g.charts[fi];
+  std::vector<Vec3> from;
+  for (const Point2& q : part) from.push_back(chart.lift_double(q));
+  Points2 pts = part;
+  const std::vector<Vec3> extra = overshoot_points(from, p_proj, eps_o, g.cspace->scale());
+  if (extra.empty()) {
+    for (const Point2& q : chart_disk(g, fi, p_proj, eps_o, /*outer=*/true)) pts.push_back(q);
+  } else {
+    for (const Vec3& q : extra) pts.push_back(chart.project(q));
+  }
+  Points2 hull = convex_hull(pts);
+  if (hull.empty()) hull = {pts[0]};
+  if (eps_t > 0) hull = minkowski(hull, disk_offsets(chart, g.cspace->faces()[fi].normal, eps_t));
+  return clip(hull, g.face_polygon[fi]);
+}
+
+}  // namespace cmt::fp

@@ -1,0 +1,422 @@
+// Generalized-spring forward projection (Buckley §4.4, Alg 4.4 inside the Alg 4.1 framework). A worklist
+// fixpoint like forward_projection.cc, with three kinds of face work:
+//   entries  (start, landings from flight, seeds from edges/vertices): the robot may slide from them within
+//            the eps_t strip toward p' (Fig 3.14); an entry is slid once (what was slid from is recorded, so
+//            a landing already inside a reached region is still slid: its own strip may reach further);
+//   new reached parts (entries and strips): reached edges/corners, and flight when the robot may leave the
+//            face; strips are not slid again (the strip already bounds the whole slide, Fig 3.14);
+//   the face's strong sticking configurations (Fig 3.16) are subtracted before sliding and flying (Alg 4.4).
+// Termination: reached parts of faces inside the weak sticking configurations, reached edges and vertices
+// whose weak sticking region holds p, and free-space rest near p.
+#include "verifier/spring_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "verifier/internal/spring_flight.h"
+#include "verifier/spring.h"
+
+namespace cmt {
+namespace {
+
+using namespace fp;
+
+class SpringProjector {
+ public:
+  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p)
+      : c_(lt.cspace),
+        u_(lt.task.uncertainty),
+        p_(p),
+        eps_t_(eps_t(u_)),
+        eps_o_(eps_o(u_)),
+        tan_v_(std::tan(u_.theta_v)),
+        reached_(c_),
+        r_(reached_.impl()) {
+    nf_ = static_cast<int>(c_.faces().size());
+    ne_ = static_cast<int>(c_.edges().size());
+    nv_ = static_cast<int>(c_.vertices().size());
+    pend_entry_.resize(nf_);
+    pend_entry_lower_.resize(nf_);
+    entered_.resize(nf_);
+    entered_lower_.resize(nf_);
+    pend_new_.resize(nf_);
+    pend_new_lower_.resize(nf_);
+    pend_edge_.resize(ne_);
+    pend_vertex_.assign(nv_, 0);
+    for (int fi = 0; fi < nf_; ++fi) {
+      const Face& f = c_.faces()[fi];
+      const FaceStickingRadii rad = face_sticking_radii(f, p_, u_);
+      centers_.push_back(rad.center);
+      depth_.push_back(f.offset - f.normal.dot(p_));
+      PolygonSet2 strong;
+      Points2 strong_poly;
+      if (rad.strong > 0) {
+        const Points2 s = clip(chart_disk(r_, fi, rad.center, rad.strong, false), r_.face_polygon[fi]);
+        if (s.size() >= 3) {
+          strong = PolygonSet2(to_polygon(s));
+          strong_poly = s;
+        }
+      }
+      strong_poly_.push_back(strong_poly);
+      Points2 w;
+      if (std::isinf(rad.weak))
+        w = r_.face_polygon[fi];
+      else if (rad.weak >= 0)
+        w = clip(chart_disk(r_, fi, rad.center, rad.weak, true), r_.face_polygon[fi]);
+      weak_.push_back(w);
+      strong_.push_back(std::move(strong));
+    }
+    for (int id = nf_; id < c_.atom_count(); ++id) {
+      const SpringStickingRegions reg = spring_sticking_regions(c_, id, u_);
+      weak_atom_.push_back(reg.weak.contains(p_));
+      strong_atom_.push_back(reg.strong.contains(p_));
+    }
+    // The start: entries on faces, new intervals and vertices.
+    const ReachedSet::Impl& s = start.impl();
+    for (int fi = 0; fi < nf_; ++fi) {
+      if (!s.faces[fi].region.is_empty()) add_entry_region(fi, s.faces[fi].region);
+      for (const Segment2& seg : s.faces[fi].segments) add_entry_lower(fi, {seg.source(), seg.target()});
+      for (const Point2& q : s.faces[fi].points) add_entry_lower(fi, {q});
+    }
+    for (int ei = 0; ei < ne_; ++ei)
+      for (const EdgeInterval& iv : s.edges[ei]) add_interval(ei, iv.t0, iv.t1);
+    for (int vi = 0; vi < nv_; ++vi)
+      if (s.vertices[vi]) add_vertex(vi);
+  }
+
+  SpringProjection run() {
+    SpringProjection out{ReachedSet(c_), ReachedSet(c_)};
+    bool progress = true;
+    while (progress && steps_ <= kMaxSpringFixpointSteps) {
+      progress = false;
+      for (int fi = 0; fi < nf_; ++fi)
+        if (!pend_entry_[fi].is_empty() || !pend_entry_lower_[fi].empty() || !pend_new_[fi].is_empty() ||
+            !pend_new_lower_[fi].empty()) {
+          progress = true;
+          process_face(fi);
+        }
+      for (int ei = 0; ei < ne_; ++ei)
+        if (!pend_edge_[ei].empty()) {
+          progress = true;
+          process_edge(ei);
+        }
+      for (int vi = 0; vi < nv_; ++vi)
+        if (pend_vertex_[vi]) {
+          progress = true;
+          process_vertex(vi);
+        }
+    }
+    if (progress) {
+      out.fallback = true;
+      flew_ = true;
+      for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
+    }
+    out.termination = termination();
+    out.free_radius = spring_rest_radius(u_);
+    out.free_center = p_;
+    out.free_termination = flew_ && rest_ball_meets_free(out.free_radius);
+    out.may_not_terminate = out.termination.empty() && !out.free_termination;
+    out.reached = std::move(reached_);
+    out.steps = steps_;
+    return out;
+  }
+
+ private:
+  // ---- adding ----
+  void add_reached_region(int fi, const PolygonSet2& part) {
+    PolygonSet2 added;
+    if (r_.add_region(fi, part, &added)) pend_new_[fi].join(added);
+  }
+  void add_reached_lower(int fi, const Points2& pts) {
+    const bool fresh = pts.size() == 2 ? r_.add_segment(fi, pts[0], pts[1]) : r_.add_point(fi, pts[0]);
+    if (fresh) pend_new_lower_[fi].push_back(pts);
+  }
+  void add_entry_region(int fi, const PolygonSet2& part) {
+    add_reached_region(fi, part);
+    PolygonSet2 fresh = part;
+    fresh.difference(entered_[fi]);
+    if (fresh.is_empty()) return;
+    entered_[fi].join(fresh);
+    pend_entry_[fi].join(fresh);
+  }
+  void add_entry_lower(int fi, const Points2& pts) {
+    if (pts.empty()) return;
+    add_reached_lower(fi, pts);
+    for (const Points2& e : entered_lower_[fi])
+      if (e == pts) return;
+    entered_lower_[fi].push_back(pts);
+    pend_entry_lower_[fi].push_back(pts);
+  }
+  void add_interval(int ei, double t0, double t1) {
+    std::vector<EdgeInterval> added;
+    const double fresh = r_.add_interval(ei, t0, t1, &added);
+    if (fresh < 0) return;
+    if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
+      for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
+  }
+  void add_vertex(int vi) {
+    if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
+  }
+  void absorb(const std::vector<FlightHit>& hits) {
+    for (const FlightHit& h : hits) {
+      if (!h.region.is_empty())
+        add_entry_region(h.face, h.region);
+      else
+        add_entry_lower(h.face, h.lower);
+    }
+  }
+
+  // ---- leaving and staying on a face ----
+  // With x̂ within eps_s of x on the face, p − x̂ has normal part (toward free space) <= −depth + eps_s and
+  // tangential part <= |x − p'| + eps_s; the velocity is within theta_v of it. It always points into the
+  // obstacle side when (depth − eps_s) > tan(theta_v) (d + eps_s), always into free space when (−depth −
+  // eps_s) > tan(theta_v) (d + eps_s). Compared with a relative margin that favours moving.
+  bool may_leave(int fi, const std::vector<Vec3>& pts) const {
+    return !(depth_[fi] - u_.eps_s > tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+  }
+  bool may_stay(int fi, const std::vector<Vec3>& pts) const {
+    return !(-depth_[fi] - u_.eps_s > tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+  }
+  // From the edge onto face fi: m = the in-face unit normal of the edge pointing into the face. Impossible
+  // when (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) < 0 at both ends of the segment (the left side
+  // is convex along the edge): then (p − x̂) . m < −sin(theta_v) |p − x̂| for every sensed x̂.
+  bool may_enter(const Edge& e, int fi, const Vec3& a, const Vec3& b) const {
+    const Face& f = c_.faces()[fi];
+    Vec3 m = f.normal.cross(e.b - e.a).normalized();
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& q : f.polygon) centroid += q / static_cast<double>(f.polygon.size());
+    if ((centroid - e.a).dot(m) < 0) m = -m;
+    const double sv = std::sin(u_.theta_v);
+    for (const Vec3& x : {a, b})
+      if ((p_ - x).dot(m) + u_.eps_s + sv * ((p_ - x).norm() + u_.eps_s) >= -kDecisionMargin * c_.scale())
+        return true;
+    return false;
+  }
+  double max_dist(int fi, const std::vector<Vec3>& pts) const {
+    double d = 0;
+    for (const Vec3& x : pts) d = std::max(d, (x - centers_[fi]).norm());
+    return d;
+  }
+  std::vector<Vec3> lifted(int fi, const Points2& part) const {
+    std::vector<Vec3> out;
+    for (const Point2& q : part) out.push_back(r_.charts[fi].lift_double(q));
+    return out;
+  }
+
+  // ---- processing ----
+  void process_face(int fi) {
+    ++steps_;
+    const Face& face = c_.faces()[fi];
+    const FaceChart& chart = r_.charts[fi];
+    // New reached parts: edges and corners, then flight from outside the strong configurations.
+    PolygonSet2 fresh = std::move(pend_new_[fi]);
+    pend_new_[fi] = PolygonSet2();
+    std::vector<Points2> news = convex_pieces(fresh);
+    for (Points2& l : pend_new_lower_[fi]) news.push_back(std::move(l));
+    pend_new_lower_[fi].clear();
+    for (const Points2& part : news) {
+      for (int e : face.edges) {
+        const Edge& edge = c_.edges()[e - nf_];
+        FT t0, t1;
+        if (clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1))
+          add_interval(e - nf_, CGAL::to_interval(t0).first - kEdgeParamSlack,
+                       CGAL::to_interval(t1).second + kEdgeParamSlack);
+      }
+      for (int vid : face.vertices)
+        if (inside_closed(part, chart.project(c_.vertices()[vid - nf_ - ne_].point)))
+          add_vertex(vid - nf_ - ne_);
+    }
+    fresh.difference(strong_[fi]);
+    // One source per face step: the hull of everything new outside the strong configurations (the volume
+    // from a hull contains the volumes from its parts: sound, looser, far fewer exact sections).
+    Points2 fly_pts;
+    for (const Points2& part : convex_pieces(fresh)) fly_pts.insert(fly_pts.end(), part.begin(), part.end());
+    for (const Points2& l : news)
+      if (l.size() < 3) fly_pts.insert(fly_pts.end(), l.begin(), l.end());
+    const Points2 fly_hull = hull_or_points(fly_pts);
+    if (!fly_hull.empty() && may_leave(fi, lifted(fi, fly_hull))) {
+      std::vector<Point3> src;
+      for (const Point2& q : fly_hull) src.push_back(chart.lift(q));
+      fly(src, fi);
+    }
+    // Entries: Alg 4.4 (minus the strong configurations, the strip, reached).
+    PolygonSet2 entry = std::move(pend_entry_[fi]);
+    pend_entry_[fi] = PolygonSet2();
+    entry.difference(strong_[fi]);
+    Points2 entry_pts;
+    for (const Points2& part : convex_pieces(entry))
+      entry_pts.insert(entry_pts.end(), part.begin(), part.end());
+    for (const Points2& l : pend_entry_lower_[fi]) {
+      bool stuck = !strong_poly_[fi].empty();  // inside the strong configurations: it sticks (Alg 4.4)
+      for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
+      if (!stuck) entry_pts.insert(entry_pts.end(), l.begin(), l.end());
+    }
+    pend_entry_lower_[fi].clear();
+    // The strip from the hull of the entries contains the strips from each (same generators, larger hull).
+    const Points2 entry_hull = hull_or_points(entry_pts);
+    if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
+    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_, eps_o_);
+    if (strip.size() >= 3)
+      add_reached_region(fi, PolygonSet2(to_polygon(strip)));
+    else if (!strip.empty())
+      add_reached_lower(fi, strip);
+  }
+
+  static Points2 hull_or_points(const Points2& pts) {
+    if (pts.empty()) return {};
+    Points2 h = convex_hull(pts);
+    return h.empty() ? Points2{pts[0]} : h;
+  }
+
+  void fly(const std::vector<Point3>& src, int source_face) {
+    flew_ = true;
+    absorb(spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_));
+  }
+
+  // The edge's parameter interval about the projection q of p where motion along the edge may go either way
+  // (|x − q| = s with s − eps_s <= sin(theta_v) (|p − x| + eps_s)), or the overshoot eps_o if larger.
+  double edge_halfwidth(const Edge& e) const {
+    const Vec3 d = e.b - e.a;
+    const Vec3 q = e.a + (p_ - e.a).dot(d) / d.squaredNorm() * d;
+    const double perp = (p_ - q).norm(), sv = std::sin(u_.theta_v);
+    if (sv >= 1) return std::numeric_limits<double>::infinity();
+    auto f = [&](double s) { return s - u_.eps_s - sv * (std::hypot(perp, s) + u_.eps_s); };
+    double lo = 0, hi = 1;
+    while (f(hi) <= 0) hi *= 2;
+    for (int i = 0; i < 100; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (f(mid) <= 0 ? lo : hi) = mid;
+    }
+    return std::max(hi, eps_o_) * (1 + kSpringRelativeSlack);
+  }
+
+  void process_edge(int ei) {
+    ++steps_;
+    std::vector<EdgeInterval> ivs = std::move(pend_edge_[ei]);
+    pend_edge_[ei].clear();
+    const Edge& e = c_.edges()[ei];
+    for (const EdgeInterval& iv : ivs) {
+      if (iv.t0 <= kEdgeParamSlack) add_vertex(e.vertex_a - nf_ - ne_);
+      if (iv.t1 >= 1 - kEdgeParamSlack) add_vertex(e.vertex_b - nf_ - ne_);
+    }
+    const Vec3 d = e.b - e.a;
+    const double len = d.norm();
+    const double tp = (p_ - e.a).dot(d) / (len * len);
+    const double w = edge_halfwidth(e) / len + kEdgeParamSlack;
+    for (const EdgeInterval& iv : ivs) {
+      const Vec3 a = e.a + iv.t0 * d, b = e.a + iv.t1 * d;
+      // Along the edge toward q (and either way near it); flat edges are motion on the plane (faces).
+      if (e.shape != EdgeShape::kFlat)
+        add_interval(ei, std::max(0.0, std::min(iv.t0, tp - w)), std::min(1.0, std::max(iv.t1, tp + w)));
+      // Onto an adjacent face when some admissible velocity points into it (see may_enter).
+      for (int f : e.faces) {
+        const int fi = f;
+        if (!may_enter(e, fi, a, b)) continue;
+        const Point2 ca = r_.charts[fi].project(a), cb = r_.charts[fi].project(b);
+        add_entry_lower(fi, iv.t1 > iv.t0 ? Points2{ca, cb} : Points2{ca});
+      }
+      // Flight: from a concave or flat edge only if every adjacent face may be left, from a convex one if
+      // some may; non-manifold edges always.
+      int leave = 0;
+      for (int f : e.faces) leave += may_leave(f, {a, b}) ? 1 : 0;
+      const int nfaces = static_cast<int>(e.faces.size());
+      const bool flies =
+          e.shape == EdgeShape::kNonManifold || (e.shape == EdgeShape::kConvex ? leave > 0 : leave == nfaces);
+      if (!flies) continue;
+      std::vector<Point3> src = {exact(a)};
+      if (iv.t1 > iv.t0) src.push_back(exact(b));
+      fly(src, -1);
+    }
+  }
+
+  void process_vertex(int vi) {
+    ++steps_;
+    pend_vertex_[vi] = 0;
+    const Vertex& vx = c_.vertices()[vi];
+    if (strong_atom_[ne_ + vi]) return;  // p in the vertex's strong region: it sticks there
+    for (int e : vx.edges) {
+      const Edge& edge = c_.edges()[e - nf_];
+      const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
+      add_interval(e - nf_, t, t);
+    }
+    for (int f : vx.faces) add_entry_lower(f, {r_.charts[f].project(vx.point)});
+    fly({exact(vx.point)}, -1);
+  }
+
+  // ---- results ----
+  ReachedSet termination() const {
+    ReachedSet out(c_);
+    ReachedSet::Impl& t = out.impl();
+    for (int fi = 0; fi < nf_; ++fi) {
+      const Points2& w = weak_[fi];
+      if (w.empty()) continue;
+      const FaceSet& f = r_.faces[fi];
+      if (!f.region.is_empty() && w.size() >= 3) {
+        PolygonSet2 part = f.region;
+        part.intersection(to_polygon(w));
+        PolygonSet2 added;
+        if (!part.is_empty()) t.add_region(fi, part, &added);
+      }
+      for (const Segment2& s : f.segments) {
+        FT t0, t1;
+        if (clip_segment(w, s.source(), s.target(), &t0, &t1)) {
+          const Point2 a = s.source() + (s.target() - s.source()) * t0;
+          const Point2 b = s.source() + (s.target() - s.source()) * t1;
+          if (t0 == t1)
+            t.add_point(fi, a);
+          else
+            t.add_segment(fi, a, b);
+        }
+      }
+      for (const Point2& q : f.points)
+        if (inside_closed(w, q)) t.add_point(fi, q);
+    }
+    for (int ei = 0; ei < ne_; ++ei)
+      if (weak_atom_[ei])
+        for (const EdgeInterval& iv : r_.edges[ei]) t.add_interval(ei, iv.t0, iv.t1, nullptr);
+    for (int vi = 0; vi < nv_; ++vi)
+      if (weak_atom_[ne_ + vi] && r_.vertices[vi]) t.add_vertex(vi);
+    return out;
+  }
+
+  // Does the closed ball about p of radius r meet free space? p free, or within r of the contact surface
+  // (every surface point is a limit of free points). Decided with a relative margin that favours "yes".
+  bool rest_ball_meets_free(double r) const {
+    if (c_.classify(p_, 0) == PointClass::kFree) return true;
+    return c_.distance_to_surface(p_) <= r * (1 + kSpringRelativeSlack) + kDecisionMargin * c_.scale();
+  }
+
+  // Margin (x scene scale) by which floating-point decisions about leaving/staying/resting favour motion.
+  static constexpr double kDecisionMargin = 1e-9;
+
+  const CSpace& c_;
+  Uncertainty u_;
+  Vec3 p_;
+  double eps_t_, eps_o_, tan_v_;
+  ReachedSet reached_;
+  ReachedSet::Impl& r_;
+  int nf_ = 0, ne_ = 0, nv_ = 0;
+  std::vector<Vec3> centers_;
+  std::vector<double> depth_;
+  std::vector<PolygonSet2> strong_;
+  std::vector<Points2> strong_poly_;
+  std::vector<Points2> weak_;
+  std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
+  std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;
+  std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
+  std::vector<std::vector<EdgeInterval>> pend_edge_;
+  std::vector<char> pend_vertex_;
+  bool flew_ = false;
+  int steps_ = 0;
+};
+
+}  // namespace
+
+double spring_rest_radius(const Uncertainty& u) { return std::max(u.eps_p, u.eps_s); }
+
+SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p) {
+  return SpringProjector(task, start, p).run();
+}
+
+}  // namespace cmt

@@ -1,0 +1,36 @@
+// Forward projection and termination of one generalized-spring motion (Buckley §3.3, §4.4, Alg 4.4, which the
+// thesis only proposed), in the framework of forward_projection.h (Alg 4.1: flight, sliding, edges, vertices,
+// fixpoint). Sound: `termination` contains every contact point where a spring motion commanded to p and
+// obeying the error bounds (theta_v, eps_s, eps_p, step: eps_t, eps_o) can come to rest, and
+// `free_termination` is set whenever it may come to rest in free space (near p). docs/verifier.md, "Spring".
+#pragma once
+
+#include "models/loaded_task.h"
+#include "verifier/reached_set.h"
+
+namespace cmt {
+
+struct SpringProjection {
+  ReachedSet reached;              // every contact point reachable from the start (the start included)
+  ReachedSet termination;          // reached points where sticking is possible (weak sticking configurations)
+  bool may_not_terminate = false;  // no contact termination and no free-space rest
+  bool fallback = false;           // the fixpoint cap was hit: every atom is reached (sound, uninformative)
+  int steps = 0;                   // work items processed
+  // The robot may come to rest in free space: the ball of radius free_radius about free_center (= p) meets
+  // free space and the motion may leave contact.
+  bool free_termination = false;
+  Vec3 free_center = Vec3::Zero();
+  double free_radius = 0;
+};
+
+// Work items processed before the "every atom is reached" fallback.
+inline constexpr int kMaxSpringFixpointSteps = 20000;
+
+// Radius of the free-space rest ball about p: at rest in free space the sensed position equals the commanded
+// one (x' = p − x̂ = 0), so the robot is within eps_s of p; eps_p bounds the final positioning error. The
+// larger of the two.
+double spring_rest_radius(const Uncertainty& u);
+
+SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p);
+
+}  // namespace cmt
