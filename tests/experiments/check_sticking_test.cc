@@ -10,22 +10,17 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/experiments/cmt_runner.h"
+
 namespace {
 
 nlohmann::json run_json(const std::string& args, int* status) {
-  const std::string cmd = std::string(CMT_BINARY) + " " + args + " --json 2>/dev/null";
-  std::string out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (pipe && fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int raw = pipe ? pclose(pipe) : -1;
-  *status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return nlohmann::json::parse(out);
+  const cmt::test::Result r = cmt::test::run(args + " --json");
+  *status = r.status;
+  return nlohmann::json::parse(r.out);
 }
 
-std::string task(const std::string& name) {
-  return std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml";
-}
+using cmt::test::task;
 
 TEST(CheckSticking, FacesAndVerticesAgreeWithPhysics) {
   for (const std::string name : {"cube", "hole"}) {

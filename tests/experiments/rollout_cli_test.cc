@@ -11,28 +11,13 @@
 #include <sstream>
 #include <string>
 
+#include "tests/experiments/cmt_runner.h"
+
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out;
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
-std::string task(const std::string& name) {
-  return std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml";
-}
+using cmt::test::Result;
+using cmt::test::run;
+using cmt::test::task;
 
 TEST(CmtRollout, HoleTeachReportsTheContractFields) {
   const Result r = run("rollout " + task("hole") + " --strategy teach -n 8 --seed 3 --threads 2 --json");

@@ -1,0 +1,34 @@
+// Runs the built cmt program for end-to-end tests: its exit status and stdout (stderr is discarded).
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace cmt::test {
+
+struct Result {
+  int status = -1;
+  std::string out;
+};
+
+inline Result run(const std::string& args) {
+  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+// A built-in task file.
+inline std::string task(const std::string& name) {
+  return std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml";
+}
+
+}  // namespace cmt::test
