@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "verifier/damper.h"
+#include "verifier/internal/fixpoint.h"
 #include "verifier/internal/flight.h"
 
 namespace cmt {
@@ -92,25 +93,14 @@ class Projector {
 
   DamperProjection run() {
     DamperProjection out{ReachedSet(c_), ReachedSet(c_)};
-    bool progress = true;
-    while (progress && steps_ <= kMaxFixpointSteps) {
-      progress = false;
-      for (int fi = 0; fi < nf_; ++fi)
-        if (!pend_region_[fi].is_empty() || !pend_seg_[fi].empty() || !pend_pt_[fi].empty()) {
-          progress = true;
-          process_face(fi);
-        }
-      for (int ei = 0; ei < ne_; ++ei)
-        if (!pend_edge_[ei].empty()) {
-          progress = true;
-          process_edge(ei);
-        }
-      for (int vi = 0; vi < nv_; ++vi)
-        if (pend_vertex_[vi]) {
-          progress = true;
-          process_vertex(vi);
-        }
-    }
+    const bool progress = sweep_until_stable(
+        nf_, ne_, nv_, steps_, kMaxFixpointSteps,
+        [&](int fi) {
+          return !pend_region_[fi].is_empty() || !pend_seg_[fi].empty() || !pend_pt_[fi].empty();
+        },
+        [&](int fi) { process_face(fi); }, [&](int ei) { return !pend_edge_[ei].empty(); },
+        [&](int ei) { process_edge(ei); }, [&](int vi) { return pend_vertex_[vi] != 0; },
+        [&](int vi) { process_vertex(vi); });
     if (progress) {  // cap reached: every atom (sound, uninformative)
       out.fallback = true;
       for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);

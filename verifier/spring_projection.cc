@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 
+#include "verifier/internal/fixpoint.h"
 #include "verifier/internal/spring_flight.h"
 #include "verifier/spring.h"
 
@@ -87,26 +88,15 @@ class SpringProjector {
 
   SpringProjection run() {
     SpringProjection out{ReachedSet(c_), ReachedSet(c_)};
-    bool progress = true;
-    while (progress && steps_ <= kMaxSpringFixpointSteps) {
-      progress = false;
-      for (int fi = 0; fi < nf_; ++fi)
-        if (!pend_entry_[fi].is_empty() || !pend_entry_lower_[fi].empty() || !pend_new_[fi].is_empty() ||
-            !pend_new_lower_[fi].empty()) {
-          progress = true;
-          process_face(fi);
-        }
-      for (int ei = 0; ei < ne_; ++ei)
-        if (!pend_edge_[ei].empty()) {
-          progress = true;
-          process_edge(ei);
-        }
-      for (int vi = 0; vi < nv_; ++vi)
-        if (pend_vertex_[vi]) {
-          progress = true;
-          process_vertex(vi);
-        }
-    }
+    const bool progress = sweep_until_stable(
+        nf_, ne_, nv_, steps_, kMaxSpringFixpointSteps,
+        [&](int fi) {
+          return !pend_entry_[fi].is_empty() || !pend_entry_lower_[fi].empty() || !pend_new_[fi].is_empty() ||
+                 !pend_new_lower_[fi].empty();
+        },
+        [&](int fi) { process_face(fi); }, [&](int ei) { return !pend_edge_[ei].empty(); },
+        [&](int ei) { process_edge(ei); }, [&](int vi) { return pend_vertex_[vi] != 0; },
+        [&](int vi) { process_vertex(vi); });
     if (progress) {
       out.fallback = true;
       flew_ = true;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include "tests/verifier/test_geometry.h"
 #include "verifier/atom_cone.h"
 #include "verifier/damper.h"
 #include "verifier/verify.h"
@@ -26,12 +27,7 @@ std::string scene(double mu, double theta_v, const std::string& obstacles, const
          "}\ngoal: {point: " + start + "}\nmotions:\n  m: {damper: " + v + "}\nstrategies:\n  s: [m]\n";
 }
 
-// The face whose plane has the given outward normal and contains p.
-int face_at(const CSpace& c, const Vec3& normal, const Vec3& p) {
-  for (const Face& f : c.faces())
-    if (f.normal.dot(normal) > 1 - 1e-12 && c.distance_to_atom(p, f.id) < 1e-9) return f.id;
-  return -1;
-}
+using test::face_at;
 
 struct Projected {
   std::shared_ptr<const LoadedTask> task;

@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include "tests/verifier/test_geometry.h"
 #include "verifier/spring.h"
 #include "verifier/verify.h"
 
@@ -25,11 +26,7 @@ std::string scene(const std::string& start, const std::string& p) {
          "}\nstrategies:\n  s: [m]\n";
 }
 
-int face_at(const CSpace& c, const Vec3& normal, const Vec3& p) {
-  for (const Face& f : c.faces())
-    if (f.normal.dot(normal) > 1 - 1e-12 && c.distance_to_atom(p, f.id) < 1e-9) return f.id;
-  return -1;
-}
+using test::face_at;
 
 struct Projected {
   std::shared_ptr<const LoadedTask> task;
