@@ -37,14 +37,8 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       kinds = {has("face"), has("edge"), has("vertex")};
     }
     const StickingCheckResult r = check_sticking(task, options->n, options->seed, options->threads, kinds);
-    const double may_fraction = r.may > 0 ? static_cast<double>(r.may_stuck) / r.may : 0.0;
-    const nlohmann::json j = {{"task", task->task.name},
-                              {"trials", r.trials},
-                              {"disagreements", r.disagreements},
-                              {"classes", {{"must", r.must}, {"may", r.may}, {"never", r.never}}},
-                              {"may_stick_fraction", may_fraction},
-                              {"disagreeing_trials", r.worst},
-                              {"seconds", r.seconds}};
+    nlohmann::json j = sticking_check_json(*task, r);
+    j.erase("records");  // per-trial records are for reports (sweeps); the CLI prints the summary
     if (state.json)
       print_json(j);
     else

@@ -151,8 +151,48 @@ StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n
                            {"relative_travel", t.travel}});
     }
   }
+  for (int i = 0; i < n; ++i) {
+    const Trial& t = trials[i];
+    Vec3 inward = Vec3::Zero();
+    double mu = 0;
+    const std::vector<int> faces = atom_faces(c, t.atom);
+    for (int f : faces) {
+      inward -= c.faces()[f].normal;
+      mu = std::max(mu, c.faces()[f].friction);
+    }
+    StickingTrialRecord rec;
+    rec.atom = t.atom;
+    rec.kind = c.atom_kind(t.atom);
+    rec.cls = t.cls;
+    rec.command_angle = std::acos(std::clamp(inward.normalized().dot(t.command.normalized()), -1.0, 1.0));
+    rec.phi = std::atan(mu);
+    rec.stuck = t.stuck;
+    rec.speed = t.speed;
+    r.records.push_back(rec);
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckResult& r) {
+  const double may_fraction = r.may > 0 ? static_cast<double>(r.may_stuck) / r.may : 0.0;
+  nlohmann::json records = nlohmann::json::array();
+  for (const StickingTrialRecord& t : r.records)
+    records.push_back({{"atom", t.atom},
+                       {"kind", atom_kind_name(t.kind)},
+                       {"class", stick_class_name(t.cls)},
+                       {"command_angle", t.command_angle},
+                       {"phi", t.phi},
+                       {"stuck", t.stuck},
+                       {"speed", t.speed}});
+  return {{"task", task.task.name},
+          {"trials", r.trials},
+          {"disagreements", r.disagreements},
+          {"classes", {{"must", r.must}, {"may", r.may}, {"never", r.never}}},
+          {"may_stick_fraction", may_fraction},
+          {"disagreeing_trials", r.worst},
+          {"records", records},
+          {"seconds", r.seconds}};
 }
 
 }  // namespace cmt

@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "models/loaded_task.h"
+#include "verifier/damper.h"
 
 namespace cmt {
 
@@ -23,14 +25,30 @@ inline constexpr double kCheckStuckSpeed = 1e-3;
 // commanded speed (10x the speed threshold: room for the contact settling in the first milliseconds).
 inline constexpr double kCheckStuckTravel = 1e-2;
 
+// One trial, for curves of the stick fraction against the command angle (reports).
+struct StickingTrialRecord {
+  int atom = 0;
+  AtomKind kind = AtomKind::kFace;
+  StickClass cls = StickClass::kMay;
+  double command_angle = 0;  // angle of the command from the atom's inward direction (sum of face normals), rad
+  double phi = 0;            // friction angle atan(mu), rad
+  bool stuck = false;
+  double speed = 0;  // observed speed / commanded speed over the measuring window
+};
+
 struct StickingCheckResult {
   int trials = 0;
   int disagreements = 0;
   int must = 0, may = 0, never = 0;
   int may_stuck = 0;                               // may-stick cases that stuck
   nlohmann::json worst = nlohmann::json::array();  // the disagreeing trials (first 20)
+  std::vector<StickingTrialRecord> records;       // every trial, in trial order
   double seconds = 0;
 };
+
+// {"trials", "disagreements", "classes": {must, may, never}, "may_stick_fraction", "disagreeing_trials",
+//  "records": [{atom, kind, class, command_angle, phi, stuck, speed}], "seconds"}
+nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckResult& result);
 
 // Which atoms the trials are drawn from.
 struct AtomKindFilter {
