@@ -19,6 +19,11 @@ int main(int argc, char** argv) {
   cmt::add_sticking_command(app, state);
   cmt::add_verify_command(app, state);
   cmt::add_check_sticking_command(app, state);
+  cmt::add_report_command(app, state);
+  cmt::add_validate_command(app, state);
+  cmt::add_sweep_command(app, state);
+  cmt::add_merge_command(app, state);
+  cmt::add_export_csv_command(app, state);
 
   bool wants_json = false;
   for (int i = 1; i < argc; ++i) wants_json = wants_json || std::string(argv[i]) == "--json";

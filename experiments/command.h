@@ -19,5 +19,10 @@ void add_calibrate_friction_command(CLI::App& app, CommandState& state);
 void add_sticking_command(CLI::App& app, CommandState& state);
 void add_verify_command(CLI::App& app, CommandState& state);
 void add_check_sticking_command(CLI::App& app, CommandState& state);
+void add_report_command(CLI::App& app, CommandState& state);
+void add_validate_command(CLI::App& app, CommandState& state);
+void add_sweep_command(CLI::App& app, CommandState& state);
+void add_merge_command(CLI::App& app, CommandState& state);
+void add_export_csv_command(CLI::App& app, CommandState& state);
 
 }  // namespace cmt

@@ -46,7 +46,7 @@ nlohmann::json free_piece_json(const LoadedTask& lt, const VerifyStep& s) {
 
 }  // namespace
 
-nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double seconds) {
+nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double seconds, bool with_reached) {
   nlohmann::json steps = nlohmann::json::array();
   for (const VerifyStep& s : r.steps) {
     nlohmann::json termination = pieces_json(lt, s.termination.pieces());
@@ -57,6 +57,7 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                      {"fallback", s.fallback},
                      {"fixpoint_steps", s.fixpoint_steps},
                      {"reached_area", s.reached_area}});
+    if (with_reached && s.reached) steps.back()["reached"] = pieces_json(lt, s.reached->pieces());
   }
   nlohmann::json out = {
       {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};
@@ -73,6 +74,7 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
 void add_verify_command(CLI::App& app, CommandState& state) {
   struct Options {
     std::string task, strategy, motion;
+    bool reached = false;
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -82,6 +84,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
   auto* motion = cmd->add_option("--motion", options->motion, "a single motion from the task's start");
   strategy->excludes(motion);
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->add_flag("--reached", options->reached, "also list every reached contact point per motion");
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
@@ -105,7 +108,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
       return;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const nlohmann::json j = verify_json(*task, result, seconds);
+    const nlohmann::json j = verify_json(*task, result, seconds, options->reached);
     if (state.json) {
       print_json(j);
     } else {

@@ -11,6 +11,8 @@
 
 namespace cmt {
 
-nlohmann::json verify_json(const LoadedTask& task, const VerifyResult& result, double seconds);
+// with_reached: each step also lists `reached`, every contact point the motion may pass through.
+nlohmann::json verify_json(const LoadedTask& task, const VerifyResult& result, double seconds,
+                           bool with_reached = false);
 
 }  // namespace cmt

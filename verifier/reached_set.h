@@ -70,6 +70,10 @@ class ReachedSet {
   bool has_vertex(int vertex_atom) const;
   // Is p (projected into the face's chart) in the closed region of the face (regions only, exact)?
   bool face_region_contains(int face_atom, const Vec3& p) const;
+  // Euclidean distance (task units) from p to the closed set: face regions (with holes), face segments and
+  // points, edge intervals, vertices; +infinity when the set is empty. Floating point, for comparison with
+  // tolerances far above rounding (verifier/reached_set_distance.cc).
+  double distance(const Vec3& p) const;
 
   std::vector<ReachedPiece> pieces() const;
   // The pieces of this set not contained in `container`: face regions exactly (regularized difference, the

@@ -30,6 +30,7 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
       step.free_termination = p.free_termination;
       step.free_center = p.free_center;
       step.free_radius = p.free_radius;
+      step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
     } else {
       DamperProjection p = forward_project_damper(lt, cones, current, motions[i]->target);
       step.termination = std::move(p.termination);
@@ -37,6 +38,7 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
       step.fallback = p.fallback;
       step.fixpoint_steps = p.steps;
       step.reached_area = p.reached.area();
+      step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
     }
     out.steps.push_back(step);
     if (step.may_not_terminate) {

@@ -3,6 +3,7 @@
 // Generalized-damper and generalized-spring motions are simulated.
 #pragma once
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +36,8 @@ struct VerifyStep {
   bool free_termination = false;
   Vec3 free_center = Vec3::Zero();
   double free_radius = 0;
+  // Every contact point the motion may pass through (diagnostics, reports; the start included).
+  std::shared_ptr<const ReachedSet> reached = nullptr;
 };
 
 struct VerifyResult {

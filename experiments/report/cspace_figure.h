@@ -1,0 +1,38 @@
+// Orthographic views of a configuration's C-space in the manner of Buckley's figures: the C-space faces
+// (models/cspace.h) in painter's order, the goal and start regions, the predicted termination set of every
+// motion (verifier), and the observed motion ends of the rollouts (MuJoCo) on top.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "experiments/report/plot_canvas.h"
+#include "experiments/report/predicted_sets.h"
+#include "experiments/report/results_db.h"
+#include "models/loaded_task.h"
+
+namespace cmt::report {
+
+// front: x right, z up, seen from -y; top: x right, y up, seen from +z; side: y right, z up, seen from +x.
+enum class View { kFront, kTop, kSide };
+const char* view_name(View view);  // "front", "top", "side"
+
+// The views worth drawing: all three for a 3-D task; the front only for a planar task, whose y extent is the
+// artificial extrusion of the C-space (docs/cspace.md "Planar tasks").
+std::vector<View> views_for(const Task& task);
+
+struct CSpaceFigureData {
+  const LoadedTask* task = nullptr;
+  std::vector<std::string> motions;           // the strategy's motion names, in order
+  const PredictedSets* prediction = nullptr;  // null: nothing predicted yet
+  const std::vector<RolloutRow>* rollouts = nullptr;
+  std::string title;  // what the figure is of, e.g. "cube / stick {"friction":0.3}"
+};
+
+// Color of motion i of n: the last motion (whose set is judged against the goal) is highlighted.
+cv::Scalar motion_color(int i, int n);
+
+// Draws one view, finished (axes, legend), ready to save.
+PlotCanvas draw_cspace_view(const CSpaceFigureData& data, View view, const FigureSize& size = {});
+
+}  // namespace cmt::report

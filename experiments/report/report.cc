@@ -1,0 +1,172 @@
+#include "experiments/report/report.h"
+
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "experiments/report/cspace_figure.h"
+#include "experiments/report/predicted_sets.h"
+#include "experiments/report/report_documents.h"
+#include "experiments/report/report_table.h"
+#include "experiments/report/results_db.h"
+#include "experiments/report/sticking_figure.h"
+#include "models/loaded_task.h"
+#include "models/task_error.h"
+
+namespace cmt::report {
+namespace {
+
+constexpr const char* kFigureDir = "figures";
+constexpr const char* kFigurePrefix = "config_";  // every figure this command writes starts so
+
+std::string key(const ConfigRow& c, const std::string& column) {
+  return column + " (config_id " + std::to_string(c.config_id) + ")";
+}
+
+// Figures of an earlier report of another database would be listed nowhere; only ours are removed.
+void prepare_output(const std::filesystem::path& out_dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    throw TaskError(out_dir.string(), "-o", "exists and is not a directory");
+  std::filesystem::create_directories(out_dir / kFigureDir, ec);
+  if (ec)
+    throw std::runtime_error(out_dir.string() + ": cannot create the report directory: " + ec.message());
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir / kFigureDir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && name.rfind(kFigurePrefix, 0) == 0 && entry.path().extension() == ".png")
+      std::filesystem::remove(entry.path());
+  }
+}
+
+class ReportBuilder {
+ public:
+  ReportBuilder(const ResultsDb& db, const std::filesystem::path& out_dir) : db_(db), out_dir_(out_dir) {}
+
+  ConfigSection section(const ConfigRow& c) {
+    ConfigSection s;
+    s.row = &c;
+    s.label = config_label(c);
+    const auto task = loaded(c);
+    std::vector<std::string> motions;
+    if (const Strategy* strategy = task->task.find_strategy(c.strategy))
+      motions = strategy->motions;
+    else
+      s.notes.push_back("the task has no strategy '" + c.strategy + "'");
+
+    std::optional<PredictedSets> prediction;
+    if (c.prediction && !c.prediction->verify_json.is_null()) {
+      try {
+        prediction = parse_predicted_sets(c.prediction->verify_json, task->task.dimension);
+      } catch (const std::exception& e) {  // std::invalid_argument, nlohmann::json type errors
+        throw TaskError(db_.path.string(), key(c, "predictions.verify_json"), e.what());
+      }
+    }
+    add_notes(c, prediction, s.notes);
+
+    CSpaceFigureData data{task.get(), motions, prediction ? &*prediction : nullptr, &c.rollouts, s.label};
+    for (View view : views_for(task->task)) {
+      const PlotCanvas canvas = draw_cspace_view(data, view);
+      save(canvas, c, view_name(view), std::string(view_name(view)) + " view", s);
+    }
+    if (c.metrics && !c.metrics->sticking.is_null()) {
+      std::optional<PlotCanvas> canvas;
+      try {
+        canvas = draw_sticking_figure(c.metrics->sticking, s.label);
+      } catch (const std::exception& e) {
+        throw TaskError(db_.path.string(), key(c, "metrics.sticking"), e.what());
+      }
+      if (canvas)
+        save(*canvas, c, "sticking", "stick fraction", s);
+      else
+        s.notes.push_back("sticking check: no records to plot");
+    }
+    return s;
+  }
+
+  const nlohmann::json& figures() const { return figures_; }
+
+ private:
+  // Configurations of one task share its YAML text, and building a C-space is the slow part.
+  std::shared_ptr<const LoadedTask> loaded(const ConfigRow& c) {
+    auto it = tasks_.find(c.task_yaml);
+    if (it != tasks_.end()) return it->second;
+    const std::string label = db_.path.string() + " " + key(c, "configs.task_yaml");
+    auto task = load_task_from_string(c.task_yaml, label);
+    tasks_.emplace(c.task_yaml, task);
+    return task;
+  }
+
+  void add_notes(const ConfigRow& c, const std::optional<PredictedSets>& prediction,
+                 std::vector<std::string>& notes) const {
+    if (!c.done()) {
+      std::set<int> rollouts;
+      for (const RolloutRow& r : c.rollouts) rollouts.insert(r.rollout);
+      notes.push_back("pending: " + std::to_string(rollouts.size()) + " of " + std::to_string(c.n) +
+                      " rollouts recorded so far");
+    }
+    if (!c.prediction) notes.push_back("no prediction yet");
+    if (c.prediction && !c.prediction->reliable && !c.prediction->failure.empty())
+      notes.push_back("verifier: " + c.prediction->failure);
+    if (prediction) {
+      bool any = false;
+      for (const PredictedStep& step : prediction->steps) any = any || !step.termination.empty();
+      if (!any) notes.push_back("the predicted termination sets are empty");
+    }
+    if (c.metrics) {
+      const MetricsRow& m = *c.metrics;
+      if (m.soundness_bug) notes.push_back("SOUNDNESS BUG: the verifier says reliable but a rollout failed");
+      if (const std::string replay = counterexample_command(m.counterexample); !replay.empty())
+        notes.push_back("counterexample, replay with: " + replay);
+      if (m.sticking.is_object())
+        notes.push_back("sticking check: " + std::to_string(m.sticking.value("trials", 0)) + " trials, " +
+                        std::to_string(m.sticking.value("disagreements", 0)) + " disagreements");
+    }
+  }
+
+  void save(const PlotCanvas& canvas, const ConfigRow& c, const std::string& kind, const std::string& caption,
+            ConfigSection& s) {
+    const std::string file =
+        std::string(kFigureDir) + "/" + kFigurePrefix + std::to_string(c.config_id) + "_" + kind + ".png";
+    canvas.save(out_dir_ / file);
+    s.figures.push_back({file, caption});
+    nlohmann::json entry = canvas.layout();
+    entry["file"] = file;
+    entry["config_id"] = c.config_id;
+    entry["kind"] = kind;
+    figures_.push_back(entry);
+  }
+
+  const ResultsDb& db_;
+  std::filesystem::path out_dir_;
+  std::map<std::string, std::shared_ptr<const LoadedTask>> tasks_;
+  nlohmann::json figures_ = nlohmann::json::array();
+};
+
+}  // namespace
+
+ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir) {
+  const ResultsDb db = read_results_db(database);
+  prepare_output(out_dir);
+  ReportBuilder builder(db, out_dir);
+  std::vector<ConfigSection> sections;
+  ReportSummary summary;
+  for (const ConfigRow& c : db.configs) {
+    sections.push_back(builder.section(c));
+    ++(c.done() ? summary.done : summary.pending);
+  }
+  const ReportContent content = build_report_content(db, std::move(sections));
+  summary.configs = static_cast<int>(db.configs.size());
+  summary.figures = static_cast<int>(builder.figures().size());
+  summary.index = out_dir / "index.html";
+  summary.markdown = out_dir / "report.md";
+  summary.figures_json = out_dir / "figures.json";
+  write_text_file(summary.markdown, render_markdown(content));
+  write_text_file(summary.index, render_html(content));
+  write_text_file(
+      summary.figures_json,
+      nlohmann::json({{"database", database.string()}, {"figures", builder.figures()}}).dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace cmt::report

@@ -1,0 +1,21 @@
+// `cmt report`: from a results database (cmt sweep) to a report directory:
+//   DIR/index.html, DIR/report.md   the table of every configuration (verdict vs physics) and its figures
+//   DIR/figures/config_<id>_<view>.png   C-space views with predicted and observed ends (cspace_figure.h)
+//   DIR/figures/config_<id>_sticking.png stick fraction vs command angle (sticking_figure.h)
+//   DIR/figures.json                 each figure's plot area, data ranges and legend colors (plot_canvas.h)
+#pragma once
+
+#include <filesystem>
+
+namespace cmt::report {
+
+struct ReportSummary {
+  std::filesystem::path index, markdown, figures_json;
+  int configs = 0, done = 0, pending = 0, figures = 0;
+};
+
+// Throws TaskError (file, key, reason) for a bad database or bad content in it, std::runtime_error when the
+// output cannot be written.
+ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir);
+
+}  // namespace cmt::report

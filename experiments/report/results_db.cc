@@ -1,0 +1,243 @@
+#include "experiments/report/results_db.h"
+
+#include <sqlite3.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "models/task_error.h"
+
+namespace cmt::report {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The columns the report reads, per table: a database lacking any of them is not a cmt results database (or
+// one from an incompatible version), and saying which is missing beats a half-empty report.
+const std::map<std::string, std::vector<std::string>>& required_schema() {
+  static const std::map<std::string, std::vector<std::string>> schema = {
+      {"runs", {"run_id", "spec_path", "spec_text", "created"}},
+      {"configs",
+       {"config_id", "run_id", "unit_key", "task", "task_file", "task_yaml", "strategy", "params", "n",
+        "seed", "mode", "status", "finished"}},
+      {"predictions", {"config_id", "reliable", "failure", "verify_seconds", "verify_json"}},
+      {"rollouts",
+       {"config_id", "rollout", "motion", "start_x", "start_y", "start_z", "end_x", "end_y", "end_z", "atom",
+        "termination", "inside", "distance", "success", "unstable"}},
+      {"metrics",
+       {"config_id", "rollouts", "successes", "unstable", "ends", "outside", "soundness", "coverage",
+        "coverage_radius", "contact_tolerance", "soundness_bug", "counterexample", "sticking",
+        "rollout_seconds", "verify_seconds"}},
+  };
+  return schema;
+}
+
+// RAII owners of the sqlite handles.
+class Database {
+ public:
+  explicit Database(const std::filesystem::path& path) : path_(path.string()) {
+    if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+      const std::string reason = db_ ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      throw TaskError(path_, "", "cannot open the results database: " + reason);
+    }
+  }
+  ~Database() { sqlite3_close(db_); }
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+  sqlite3* get() const { return db_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+class Statement {
+ public:
+  Statement(const Database& db, const std::string& sql, const std::string& what) : db_(db), what_(what) {
+    if (sqlite3_prepare_v2(db.get(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      throw TaskError(db.path(), what, std::string("query failed: ") + sqlite3_errmsg(db.get()));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw TaskError(db_.path(), what_, std::string("query failed: ") + sqlite3_errmsg(db_.get()));
+  }
+  bool null(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
+  std::int64_t integer(int col, std::int64_t if_null = 0) const {
+    return null(col) ? if_null : sqlite3_column_int64(stmt_, col);
+  }
+  double real(int col) const { return null(col) ? kNaN : sqlite3_column_double(stmt_, col); }
+  std::string text(int col) const {
+    const unsigned char* t = sqlite3_column_text(stmt_, col);
+    return t ? reinterpret_cast<const char*>(t) : "";
+  }
+
+ private:
+  const Database& db_;
+  std::string what_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// sqlite3_open_v2 accepts any file; the first read tells whether it is an SQLite database at all.
+void check_is_sqlite(const Database& db) {
+  sqlite3_stmt* probe = nullptr;
+  const int rc = sqlite3_prepare_v2(db.get(), "SELECT count(*) FROM sqlite_master", -1, &probe, nullptr);
+  const int step = rc == SQLITE_OK ? sqlite3_step(probe) : rc;
+  const std::string reason = sqlite3_errmsg(db.get());
+  sqlite3_finalize(probe);
+  if (step != SQLITE_ROW) throw TaskError(db.path(), "", "not an SQLite results database (" + reason + ")");
+}
+
+void check_schema(const Database& db) {
+  for (const auto& [table, columns] : required_schema()) {
+    std::set<std::string> present;
+    Statement info(db, "PRAGMA table_info(" + table + ")", table);
+    while (info.step()) present.insert(info.text(1));
+    if (present.empty())
+      throw TaskError(db.path(), table, "not a cmt results database: table '" + table + "' is missing");
+    for (const std::string& c : columns)
+      if (!present.count(c))
+        throw TaskError(db.path(), table + "." + c,
+                        "not a cmt results database: column '" + c + "' of table '" + table + "' is missing");
+  }
+}
+
+// A JSON text column; NULL or empty text is JSON null.
+nlohmann::json json_column(const Database& db, const Statement& s, int col, const std::string& key) {
+  if (s.null(col)) return nullptr;
+  const std::string text = s.text(col);
+  if (text.empty()) return nullptr;
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw TaskError(db.path(), key, std::string("invalid JSON: ") + e.what());
+  }
+}
+
+std::string config_key(std::int64_t id, const char* table, const char* column) {
+  return std::string(table) + "." + column + " (config_id " + std::to_string(id) + ")";
+}
+
+}  // namespace
+
+ResultsDb read_results_db(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw TaskError(path.string(), "", "no such results database (run `cmt sweep` first)");
+  if (std::filesystem::is_directory(path, ec))
+    throw TaskError(path.string(), "", "is a directory, not a results database");
+  const Database db(path);
+  check_is_sqlite(db);
+  check_schema(db);
+
+  ResultsDb out;
+  out.path = path;
+  {
+    Statement s(db, "SELECT run_id, spec_path, created FROM runs ORDER BY run_id", "runs");
+    while (s.step()) out.runs.push_back({s.integer(0), s.text(1), s.text(2)});
+  }
+  std::map<std::int64_t, std::size_t> index;  // config_id -> position in out.configs
+  {
+    Statement s(db,
+                "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
+                "mode, status, finished FROM configs ORDER BY config_id",
+                "configs");
+    while (s.step()) {
+      ConfigRow c;
+      c.config_id = s.integer(0);
+      c.run_id = s.integer(1);
+      c.unit_key = s.text(2);
+      c.task = s.text(3);
+      c.task_file = s.text(4);
+      c.task_yaml = s.text(5);
+      c.strategy = s.text(6);
+      c.params = json_column(db, s, 7, config_key(c.config_id, "configs", "params"));
+      if (c.params.is_null()) c.params = nlohmann::json::object();
+      if (!c.params.is_object())
+        throw TaskError(db.path(), config_key(c.config_id, "configs", "params"), "not a JSON object");
+      c.n = s.integer(8);
+      c.seed = s.integer(9);
+      c.mode = s.text(10);
+      c.status = s.text(11);
+      c.finished = s.text(12);
+      index[c.config_id] = out.configs.size();
+      out.configs.push_back(std::move(c));
+    }
+  }
+  {
+    Statement s(db, "SELECT config_id, reliable, failure, verify_seconds, verify_json FROM predictions",
+                "predictions");
+    while (s.step()) {
+      const auto it = index.find(s.integer(0));
+      if (it == index.end()) continue;  // a prediction of no listed config: nothing to report it under
+      PredictionRow p;
+      p.reliable = s.integer(1) != 0;
+      p.failure = s.text(2);
+      p.verify_seconds = s.real(3);
+      p.verify_json = json_column(db, s, 4, config_key(it->first, "predictions", "verify_json"));
+      out.configs[it->second].prediction = std::move(p);
+    }
+  }
+  {
+    Statement s(db,
+                "SELECT config_id, rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, "
+                "termination, inside, distance, success, unstable FROM rollouts "
+                "ORDER BY config_id, rollout, motion",
+                "rollouts");
+    while (s.step()) {
+      const auto it = index.find(s.integer(0));
+      if (it == index.end()) continue;
+      RolloutRow r;
+      r.rollout = static_cast<int>(s.integer(1));
+      r.motion = static_cast<int>(s.integer(2));
+      r.start = Vec3(s.real(3), s.real(4), s.real(5));
+      r.end = Vec3(s.real(6), s.real(7), s.real(8));
+      r.atom = static_cast<int>(s.integer(9, -1));
+      r.termination = s.text(10);
+      r.inside = s.integer(11) != 0;
+      r.distance = s.real(12);
+      r.success = s.integer(13) != 0;
+      r.unstable = s.integer(14) != 0;
+      out.configs[it->second].rollouts.push_back(r);
+    }
+  }
+  {
+    Statement s(db,
+                "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
+                "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
+                "rollout_seconds, verify_seconds FROM metrics",
+                "metrics");
+    while (s.step()) {
+      const auto it = index.find(s.integer(0));
+      if (it == index.end()) continue;
+      MetricsRow m;
+      m.rollouts = static_cast<int>(s.integer(1));
+      m.successes = static_cast<int>(s.integer(2));
+      m.unstable = static_cast<int>(s.integer(3));
+      m.ends = static_cast<int>(s.integer(4));
+      m.outside = static_cast<int>(s.integer(5));
+      m.soundness = s.real(6);
+      m.coverage = s.real(7);
+      m.coverage_radius = s.real(8);
+      m.contact_tolerance = s.real(9);
+      m.soundness_bug = s.integer(10) != 0;
+      m.counterexample = json_column(db, s, 11, config_key(it->first, "metrics", "counterexample"));
+      m.sticking = json_column(db, s, 12, config_key(it->first, "metrics", "sticking"));
+      m.rollout_seconds = s.real(13);
+      m.verify_seconds = s.real(14);
+      out.configs[it->second].metrics = std::move(m);
+    }
+  }
+  return out;
+}
+
+}  // namespace cmt::report

@@ -1,0 +1,345 @@
+#include "experiments/sweep_spec.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "controllers/random.h"
+#include "models/task_error.h"
+#include "models/task_loader.h"
+
+namespace cmt {
+
+namespace {
+
+// A spec YAML node with its key path (the task loader's error style: file, key path, reason).
+class SpecNode {
+ public:
+  SpecNode(YAML::Node node, std::string path, const std::string* file)
+      : node_(node), path_(std::move(path)), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& reason) const { throw TaskError(*file_, path_, reason); }
+  const std::string& path() const { return path_; }
+  const YAML::Node& raw() const { return node_; }
+
+  void require_map(const std::vector<std::string>& allowed) const {
+    if (!node_.IsMap()) fail("expected a mapping");
+    std::set<std::string> seen;
+    for (const auto& kv : node_) {
+      if (!kv.first.IsScalar()) fail("keys must be plain names");
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        SpecNode(kv.second, child_path(key), file_).fail("unknown key (allowed here: " + list + ")");
+      }
+      if (!seen.insert(key).second) SpecNode(kv.second, child_path(key), file_).fail("duplicated key");
+    }
+  }
+  // The keys of a mapping in file order (yaml-cpp keeps it).
+  std::vector<std::string> keys() const {
+    if (!node_.IsMap()) fail("expected a mapping");
+    std::vector<std::string> out;
+    for (const auto& kv : node_) {
+      if (!kv.first.IsScalar()) fail("keys must be plain names");
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(out.begin(), out.end(), key) != out.end())
+        SpecNode(kv.second, child_path(key), file_).fail("duplicated key");
+      out.push_back(key);
+    }
+    return out;
+  }
+  bool has(const std::string& key) const {
+    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+  }
+  SpecNode at(const std::string& key) const {
+    if (!has(key)) SpecNode(YAML::Node(), child_path(key), file_).fail("missing required key");
+    return SpecNode(node_[key], child_path(key), file_);
+  }
+  SpecNode item(std::size_t i) const {
+    return SpecNode(node_[i], path_ + "[" + std::to_string(i) + "]", file_);
+  }
+  std::size_t size() const { return node_.size(); }
+  std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  SpecNode list() const {
+    if (!node_.IsSequence()) fail("expected a list");
+    if (node_.size() == 0) fail("the list is empty");
+    return *this;
+  }
+  double number() const {
+    if (!node_.IsScalar()) fail("expected a number");
+    double v = 0;
+    try {
+      v = node_.as<double>();
+    } catch (const YAML::Exception&) {
+      fail("expected a number, got '" + node_.Scalar() + "'");
+    }
+    if (!std::isfinite(v)) fail("expected a finite number");
+    return v;
+  }
+  long long integer(long long lo, long long hi) const {
+    if (!node_.IsScalar()) fail("expected an integer");
+    long long v = 0;
+    try {
+      v = node_.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail("expected an integer, got '" + node_.Scalar() + "'");
+    }
+    if (v < lo || v > hi)
+      fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+    return v;
+  }
+  std::string string() const {
+    if (!node_.IsScalar()) fail("expected a string");
+    return node_.as<std::string>();
+  }
+  std::vector<double> numbers() const {
+    const SpecNode l = list();
+    std::vector<double> v;
+    for (std::size_t i = 0; i < l.size(); ++i) v.push_back(l.item(i).number());
+    return v;
+  }
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+  const std::string* file_;
+};
+
+std::string value_text(const ParamValue& p) { return p.json().dump(); }
+
+class SpecParser {
+ public:
+  SpecParser(std::string label, std::filesystem::path base_dir)
+      : file_(std::move(label)), base_dir_(std::move(base_dir)) {}
+
+  SweepSpec parse(const std::string& text) {
+    YAML::Node root_node;
+    try {
+      root_node = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw TaskError(
+          file_, "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
+          "malformed YAML: " + e.msg);
+    }
+    const SpecNode root(root_node, "", &file_);
+    if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
+    root.require_map(
+        {"description", "n", "seeds", "mode", "sticking_trials", "counterexample_budget", "tasks"});
+    SweepSpec spec;
+    spec.path = file_;
+    spec.text = text;
+    if (root.has("description")) spec.description = root.at("description").string();
+    spec.n = static_cast<int>(root.at("n").integer(1, kMaxSweepRollouts));
+    const SpecNode seeds = root.at("seeds").list();
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      const auto seed = static_cast<std::uint64_t>(seeds.item(i).integer(0, kMaxSweepSeed));
+      if (std::find(spec.seeds.begin(), spec.seeds.end(), seed) != spec.seeds.end())
+        seeds.item(i).fail("duplicated seed " + std::to_string(seed));
+      spec.seeds.push_back(seed);
+    }
+    if (root.has("mode")) {
+      const auto mode = parse_sample_mode(root.at("mode").string());
+      if (!mode) root.at("mode").fail("must be uniform or extreme, got '" + root.at("mode").string() + "'");
+      spec.mode = *mode;
+    }
+    if (root.has("sticking_trials"))
+      spec.sticking_trials = static_cast<int>(root.at("sticking_trials").integer(0, kMaxSweepStickingTrials));
+    if (root.has("counterexample_budget"))
+      spec.counterexample_budget =
+          static_cast<int>(root.at("counterexample_budget").integer(0, kMaxSweepCounterexampleBudget));
+    const SpecNode tasks = root.at("tasks").list();
+    for (std::size_t i = 0; i < tasks.size(); ++i) spec.tasks.push_back(parse_task(tasks.item(i)));
+    return spec;
+  }
+
+ private:
+  SweepTaskEntry parse_task(const SpecNode& n) const {
+    n.require_map({"file", "strategies", "grid", "random"});
+    SweepTaskEntry entry;
+    entry.spec_key = n.path();
+    const SpecNode file = n.at("file");
+    entry.file = (base_dir_ / file.string()).lexically_normal();
+    std::ifstream in(entry.file);
+    if (!in) file.fail("cannot open the task file '" + entry.file.string() + "'");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    entry.base_yaml = buffer.str();
+    try {
+      entry.base = parse_task_string(entry.base_yaml, entry.file.string());
+    } catch (const TaskError& e) {
+      file.fail("the task file is invalid: " + std::string(e.what()));
+    }
+    const SpecNode strategies = n.at("strategies").list();
+    for (std::size_t i = 0; i < strategies.size(); ++i) {
+      const std::string name = strategies.item(i).string();
+      if (entry.base.find_strategy(name) == nullptr) {
+        std::string known;
+        for (const Strategy& s : entry.base.strategies) known += (known.empty() ? "" : ", ") + s.name;
+        strategies.item(i).fail("unknown strategy '" + name + "' (the task has: " + known + ")");
+      }
+      if (std::find(entry.strategies.begin(), entry.strategies.end(), name) != entry.strategies.end())
+        strategies.item(i).fail("duplicated strategy '" + name + "'");
+      entry.strategies.push_back(name);
+    }
+
+    std::vector<ParamSet> grid = {ParamSet{}};
+    std::set<std::string> grid_keys;
+    if (n.has("grid")) grid = parse_grid(n.at("grid"), entry, grid_keys);
+    std::vector<ParamSet> draws = {ParamSet{}};
+    if (n.has("random")) draws = parse_random(n.at("random"), entry, grid_keys);
+    for (const ParamSet& g : grid)
+      for (const ParamSet& d : draws) {
+        ParamSet set = g;
+        set.insert(set.end(), d.begin(), d.end());
+        entry.param_sets.push_back(std::move(set));
+      }
+    return entry;
+  }
+
+  // One parameter key of a grid or of random.ranges: friction, an uncertainty key, or motions (a mapping of
+  // motion names). Calls `each(target, node)` for every parameter.
+  template <class F>
+  void for_each_param(const SpecNode& n, const SweepTaskEntry& entry, F each) const {
+    std::vector<std::string> allowed = {"friction"};
+    for (const std::string& k : uncertainty_override_keys()) allowed.push_back(k);
+    allowed.push_back("motions");
+    n.require_map(allowed);
+    for (const std::string& key : n.keys()) {
+      const SpecNode value = n.at(key);
+      if (key == "motions") {
+        for (const std::string& motion : value.keys()) {
+          if (entry.base.find_motion(motion) == nullptr) {
+            std::string known;
+            for (const Motion& m : entry.base.motions) known += (known.empty() ? "" : ", ") + m.name;
+            value.at(motion).fail("the task has no motion '" + motion + "' (it has: " + known + ")");
+          }
+          each(ParamTarget{ParamTarget::Kind::kMotion, motion}, value.at(motion));
+        }
+      } else if (key == "friction") {
+        each(ParamTarget{ParamTarget::Kind::kFriction, ""}, value);
+      } else {
+        each(ParamTarget{ParamTarget::Kind::kUncertainty, key}, value);
+      }
+    }
+  }
+
+  std::vector<ParamSet> parse_grid(const SpecNode& n, const SweepTaskEntry& entry,
+                                   std::set<std::string>& keys) const {
+    std::vector<ParamSet> sets = {ParamSet{}};
+    for_each_param(n, entry, [&](const ParamTarget& target, const SpecNode& values_node) {
+      keys.insert(target.param_key());
+      const SpecNode values = values_node.list();
+      std::vector<ParamValue> column;
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const SpecNode v = values.item(i);
+        ParamValue p{target,
+                     target.kind == ParamTarget::Kind::kMotion ? v.numbers() : std::vector{v.number()},
+                     v.path()};
+        check_value(entry, p, p.spec_key);
+        column.push_back(std::move(p));
+      }
+      // Cartesian product, the first grid key outermost.
+      std::vector<ParamSet> next;
+      for (const ParamSet& s : sets)
+        for (const ParamValue& p : column) {
+          ParamSet t = s;
+          t.push_back(p);
+          next.push_back(std::move(t));
+        }
+      sets = std::move(next);
+    });
+    return sets;
+  }
+
+  struct Range {
+    ParamTarget target;
+    std::vector<double> lo, hi;
+    std::string spec_key;
+  };
+
+  std::vector<ParamSet> parse_random(const SpecNode& n, const SweepTaskEntry& entry,
+                                     const std::set<std::string>& grid_keys) const {
+    n.require_map({"count", "seed", "ranges"});
+    const int count = static_cast<int>(n.at("count").integer(1, kMaxSweepRandomDraws));
+    const auto seed = static_cast<std::uint64_t>(n.at("seed").integer(0, kMaxSweepSeed));
+    std::vector<Range> ranges;
+    for_each_param(n.at("ranges"), entry, [&](const ParamTarget& target, const SpecNode& r) {
+      if (grid_keys.count(target.param_key()))
+        r.fail("'" + target.param_key() + "' is also in the grid; give each parameter in one of them");
+      Range range{target, {}, {}, r.path()};
+      if (target.kind == ParamTarget::Kind::kMotion) {
+        r.require_map({"min", "max"});
+        range.lo = r.at("min").numbers();
+        range.hi = r.at("max").numbers();
+        if (range.lo.size() != range.hi.size()) r.fail("min and max must have the same number of components");
+      } else {
+        range.lo = range.hi = {};
+        const std::vector<double> v = r.numbers();
+        if (v.size() != 2) r.fail("expected [low, high], got " + std::to_string(v.size()) + " numbers");
+        range.lo = {v[0]};
+        range.hi = {v[1]};
+      }
+      for (std::size_t k = 0; k < range.lo.size(); ++k)
+        if (range.lo[k] > range.hi[k]) r.fail("the low end exceeds the high end");
+      // Both ends must give a valid task (the draws lie between them).
+      check_value(entry, ParamValue{target, range.lo, r.path()}, r.path());
+      check_value(entry, ParamValue{target, range.hi, r.path()}, r.path());
+      ranges.push_back(std::move(range));
+    });
+    std::vector<ParamSet> draws;
+    for (int j = 0; j < count; ++j) {
+      // Draw j has its own stream: adding ranges or draws never changes the earlier draws' streams.
+      Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(j));
+      ParamSet set;
+      for (const Range& r : ranges) {
+        ParamValue p{r.target, {}, r.spec_key + " (draw " + std::to_string(j) + ")"};
+        for (std::size_t k = 0; k < r.lo.size(); ++k)
+          p.value.push_back(r.lo[k] == r.hi[k] ? r.lo[k] : uniform(rng, r.lo[k], r.hi[k]));
+        set.push_back(std::move(p));
+      }
+      draws.push_back(std::move(set));
+    }
+    return draws;
+  }
+
+  // The task with this one value written in must pass the task loader's schema checks.
+  void check_value(const SweepTaskEntry& entry, const ParamValue& p, const std::string& spec_key) const {
+    try {
+      parse_task_string(apply_overrides(entry.base_yaml, entry.base, {p}), entry.file.string());
+    } catch (const TaskError& e) {
+      throw TaskError(
+          file_, spec_key,
+          "the value " + value_text(p) + " makes the task invalid: " + e.key() + ": " + e.reason());
+    }
+  }
+
+  std::string file_;
+  std::filesystem::path base_dir_;
+};
+
+}  // namespace
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& label,
+                           const std::filesystem::path& base_dir) {
+  try {
+    return SpecParser(label, base_dir).parse(text);
+  } catch (const YAML::Exception& e) {
+    throw TaskError(label, "", std::string("malformed YAML: ") + e.what());
+  }
+}
+
+SweepSpec load_sweep_spec(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw TaskError(path.string(), "", "cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_sweep_spec(buffer.str(), path.string(), path.parent_path());
+}
+
+}  // namespace cmt

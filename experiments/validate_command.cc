@@ -1,0 +1,114 @@
+// `cmt validate TASK --strategy NAME -n N --seed S [--threads T] [--mode uniform|extreme]
+// [--sticking-trials K] [--ends] --json`: the verifier's prediction against MuJoCo rollouts
+// (experiments/validation.h, docs/validation.md). Exit 0 when physics agrees with the prediction, 1 when it
+// contradicts it (an end outside the predicted set, a failure of a strategy verified reliable, a stick/slide
+// disagreement), 2 on bad input.
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "experiments/cli_output.h"
+#include "experiments/command.h"
+#include "experiments/validation.h"
+
+namespace cmt {
+namespace {
+
+std::string point(const Vec3& p) {
+  std::ostringstream os;
+  os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return os.str();
+}
+
+void print_summary(const ValidationResult& r) {
+  std::cout << r.task << " / " << r.strategy << ": verifier says "
+            << (r.prediction.reliable ? "reliable" : "NOT reliable") << "; " << r.successes << "/"
+            << r.rollouts.size() << " rollouts succeeded (" << r.unstable << " unstable)\n"
+            << "  soundness " << r.soundness << " (" << r.outside << " of " << r.ends.size()
+            << " motion ends outside the predicted sets, tolerance " << r.contact_tolerance << ")\n"
+            << "  coverage " << r.coverage << " (radius " << r.coverage_radius << ")\n";
+  for (const ObservedEnd& e : r.worst)
+    std::cout << "  outside: rollout " << e.rollout << " motion " << r.prediction.steps[e.motion].motion
+              << " end " << point(e.end) << " at distance " << e.distance << "\n";
+  if (!r.unexpected_timeouts.empty())
+    std::cout << "  " << r.unexpected_timeouts.size()
+              << " motions timed out where the verifier predicted termination\n";
+  if (r.search.ran) std::cout << "  search: " << r.search.note << "\n";
+  if (r.soundness_bug) std::cout << "  SOUNDNESS BUG: verified reliable, yet a rollout failed\n";
+  if (r.counterexample)
+    std::cout << "  counterexample (" << r.counterexample->how << "): " << r.counterexample->replay << "\n";
+  if (r.sticking)
+    std::cout << "  sticking: " << r.sticking->trials << " trials, " << r.sticking->disagreements
+              << " disagreements\n";
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, mode = "uniform", controller = "admittance";
+    int n = 1000, threads = 0, sticking_trials = 0, budget = ValidateOptions{}.counterexample_budget;
+    std::uint64_t seed = 1;
+    bool ends = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("validate", "Compare the verifier's prediction with MuJoCo rollouts");
+  cmd->add_option("TASK", o->task, "task YAML file")->required();
+  cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
+  cmd->add_option("-n", o->n, "number of rollouts (> 0)")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "master seed; rollout i uses a stream derived from (seed, i)")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads,
+                  "worker threads (default: hardware threads); results do not depend on it");
+  cmd->add_option("--mode", o->mode, "error sampling: uniform, or extreme (mostly on the bounds' boundaries)")
+      ->check(CLI::IsMember({"uniform", "extreme"}))
+      ->capture_default_str();
+  cmd->add_option("--controller", o->controller,
+                  "controller form: admittance, impedance, or position (springs)")
+      ->check(CLI::IsMember({"admittance", "impedance", "position"}))
+      ->capture_default_str();
+  cmd->add_option("--sticking-trials", o->sticking_trials,
+                  "also run this many stick/slide trials (cmt check-sticking) and add the per-atom table")
+      ->capture_default_str();
+  cmd->add_option("--search-budget", o->budget,
+                  "extra rollouts for the counterexample search when the verifier says unreliable and no "
+                  "rollout failed")
+      ->capture_default_str();
+  cmd->add_flag("--ends", o->ends, "list every observed motion end in the JSON");
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([o, &state] {
+    if (o->n <= 0) throw CLI::ValidationError("-n", "must be > 0, got " + std::to_string(o->n));
+    if (o->threads < 0)
+      throw CLI::ValidationError("--threads", "must be >= 0, got " + std::to_string(o->threads));
+    if (o->sticking_trials < 0)
+      throw CLI::ValidationError("--sticking-trials",
+                                 "must be >= 0, got " + std::to_string(o->sticking_trials));
+    if (o->budget < 0)
+      throw CLI::ValidationError("--search-budget", "must be >= 0, got " + std::to_string(o->budget));
+    const auto task = load_task(o->task);
+    ValidateOptions options;
+    options.n = o->n;
+    options.seed = o->seed;
+    options.threads =
+        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    options.mode = *parse_sample_mode(o->mode);
+    options.form = *parse_controller_form(o->controller);
+    options.sticking_trials = o->sticking_trials;
+    options.counterexample_budget = o->budget;
+    const ValidationResult r = run_validation(task, o->strategy, options);
+    if (r.soundness_bug)
+      std::cerr << "\n*** SOUNDNESS BUG: the verifier says '" << r.strategy << "' is reliable, but rollout "
+                << r.counterexample->index << " failed. Replay it with:\n***   " << r.counterexample->replay
+                << "\n\n";
+    if (r.outside > 0)
+      std::cerr << "*** " << r.outside << " motion ends lie outside the predicted termination sets (farthest "
+                << r.worst.front().distance << ")\n";
+    if (state.json)
+      print_json(validation_json(*task, r, o->ends));
+    else
+      print_summary(r);
+    state.exit_status = contradicts_verifier(r) ? kExitFailureFound : kExitSuccess;
+  });
+}
+
+}  // namespace cmt

@@ -1,0 +1,229 @@
+// cmt sweep end to end (docs/sweeps.md): a sweep killed with SIGKILL and run again loses and duplicates
+// nothing and gives the results of an uninterrupted run; two shards merged, and an mpirun with two ranks,
+// give the results of one run (the MPI job also folding in a killed job's rank file); CSV export; bad specs
+// exit with status 2 naming file and key. Small, fast units only: two_blocks (damper) and cube (spring)
+// verify in ~1-3 s.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "tests/experiments/cmt_runner.h"
+#include "tests/experiments/sweep_test_util.h"
+
+extern char** environ;
+
+namespace cmt {
+namespace {
+
+using test::query_count;
+
+// Four units: two_blocks down and slide, cube stick at two frictions.
+std::string four_unit_spec() {
+  return "n: 10\nseeds: [1]\ncounterexample_budget: 10\ntasks:\n  - file: " +
+         test::source_task("two_blocks") +
+         "\n    strategies: [down, slide]\n  - file: " + test::source_task("cube") +
+         "\n    strategies: [stick]\n    grid:\n      friction: [0.25, 0.3]\n";
+}
+
+std::string two_unit_spec() {
+  return "n: 10\nseeds: [1]\ncounterexample_budget: 10\ntasks:\n  - file: " +
+         test::source_task("two_blocks") + "\n    strategies: [down, slide]\n";
+}
+
+nlohmann::json run_json(const std::string& args, int expected_status) {
+  const test::Result r = test::run(args + " --json");
+  EXPECT_EQ(r.status, expected_status) << args << "\n" << r.out;
+  return r.out.empty() ? nlohmann::json() : nlohmann::json::parse(r.out);
+}
+
+class SweepCli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::fresh_dir("sweep-cli"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+// Polls the database until `done` units are committed (or the process exits, or 120 s pass).
+bool wait_for_done(const std::string& db, pid_t pid, long long done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    try {
+      if (query_count(db, "SELECT count(*) FROM configs WHERE status = 'done'") >= done) return true;
+    } catch (const std::exception&) {  // not created yet
+    }
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+TEST_F(SweepCli, KillNineThenResumeLosesNothing) {
+  const std::string spec = test::write_file(dir_ / "spec.yaml", four_unit_spec()).string();
+  const std::string db = path("killed.sqlite"), reference = path("reference.sqlite");
+
+  // Start a sweep, kill it with SIGKILL as soon as one unit is committed (the next one is in flight).
+  const std::string log = path("killed.log");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  std::vector<std::string> args = {CMT_BINARY, "sweep", spec, "--db", db, "--threads", "1"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, CMT_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const bool committed = wait_for_done(db, pid, 1);
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(committed) << "no unit was committed before the sweep ended";
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it was killed";
+  const long long done_before = query_count(db, "SELECT count(*) FROM configs WHERE status = 'done'");
+  EXPECT_GE(done_before, 1);
+  EXPECT_LT(done_before, 4);
+
+  // Rerun: the finished units are skipped, the rest run.
+  const nlohmann::json rerun = run_json("sweep " + spec + " --db " + db + " --threads 1", 0);
+  EXPECT_EQ(rerun["skipped"], done_before);
+  EXPECT_EQ(rerun["ran"], 4 - done_before);
+  EXPECT_EQ(rerun["done_in_db"], 4);
+  EXPECT_EQ(rerun["pending_in_db"], 0);
+  // Every unit exactly once, with one metrics and prediction row each.
+  EXPECT_EQ(query_count(db, "SELECT count(*) FROM configs"), 4);
+  EXPECT_EQ(query_count(db, "SELECT count(DISTINCT unit_key) FROM configs"), 4);
+  EXPECT_EQ(query_count(db, "SELECT count(*) FROM metrics"), 4);
+  EXPECT_EQ(query_count(db, "SELECT count(*) FROM predictions"), 4);
+  // A third run has nothing left to do.
+  const nlohmann::json third = run_json("sweep " + spec + " --db " + db, 0);
+  EXPECT_EQ(third["skipped"], 4);
+  EXPECT_EQ(third["ran"], 0);
+
+  // The same results as an uninterrupted run (with another thread count).
+  const nlohmann::json ref = run_json("sweep " + spec + " --db " + reference + " --threads 2", 0);
+  EXPECT_EQ(ref["ran"], 4);
+  const test::Rows results = test::unit_results(db);
+  EXPECT_EQ(results.size(), 4u);
+  EXPECT_EQ(results, test::unit_results(reference));
+  EXPECT_EQ(test::rollout_results(db), test::rollout_results(reference));
+  // 10 rollouts of one motion per unit.
+  EXPECT_EQ(query_count(db, "SELECT count(*) FROM rollouts"), 40);
+}
+
+TEST_F(SweepCli, TwoShardsMergedEqualOneRun) {
+  const std::string spec = test::write_file(dir_ / "spec.yaml", two_unit_spec()).string();
+  const nlohmann::json s0 =
+      run_json("sweep " + spec + " --db " + path("s0.sqlite") + " --shard 0/2 --threads 1", 0);
+  const nlohmann::json s1 =
+      run_json("sweep " + spec + " --db " + path("s1.sqlite") + " --shard 1/2 --threads 1", 0);
+  EXPECT_EQ(s0["units"], 1);
+  EXPECT_EQ(s1["units"], 1);
+  const nlohmann::json merged =
+      run_json("merge " + path("merged.sqlite") + " " + path("s0.sqlite") + " " + path("s1.sqlite"), 0);
+  EXPECT_EQ(merged["done_in_db"], 2);
+  EXPECT_EQ(merged["inputs"][0]["merged"], 1);
+  EXPECT_EQ(merged["inputs"][1]["merged"], 1);
+  run_json("sweep " + spec + " --db " + path("one.sqlite") + " --threads 2", 0);
+  EXPECT_EQ(test::unit_results(path("merged.sqlite")), test::unit_results(path("one.sqlite")));
+  EXPECT_EQ(test::rollout_results(path("merged.sqlite")), test::rollout_results(path("one.sqlite")));
+  // A merge input that does not exist is bad input, and creates nothing.
+  run_json("merge " + path("merged.sqlite") + " " + path("missing.sqlite"), 2);
+  EXPECT_FALSE(std::filesystem::exists(path("missing.sqlite")));
+}
+
+TEST_F(SweepCli, MpirunTwoRanksResumeAndMergeIntoOneDatabase) {
+  const std::string mpirun = CMT_MPIRUN;  // found at configure time (openmpi-bin, scripts/setup.sh)
+  const std::string spec = test::write_file(dir_ / "spec.yaml", two_unit_spec()).string();
+  // What a killed job leaves behind: a rank file holding unit 0 (here made by a plain shard run).
+  const nlohmann::json leftover =
+      run_json("sweep " + spec + " --db " + path("mpi.sqlite.rank-7") + " --shard 0/2 --threads 1", 0);
+  ASSERT_EQ(leftover["ran"], 1);
+  // Containers (CI) run as root, which OpenMPI refuses unless told; --oversubscribe allows 2 ranks on 1 core.
+  const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + mpirun +
+                          " -np 2 --oversubscribe " + CMT_BINARY + " sweep " + spec + " --db " +
+                          path("mpi.sqlite") + " --threads 1 --json 2>" + path("mpi.log");
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  const int raw = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << out;
+  const nlohmann::json j = nlohmann::json::parse(out);  // rank 0 alone prints
+  EXPECT_EQ(j["ranks"], 2);
+  EXPECT_EQ(j["resumed_from_rank_files"], 1);
+  EXPECT_EQ(j["skipped"], 1);
+  EXPECT_EQ(j["ran"], 1);
+  EXPECT_EQ(j["done_in_db"], 2);
+  EXPECT_EQ(j["pending_in_db"], 0);
+  // The rank files (the leftover too) are merged and gone. Runs: the job's and the leftover's shard run.
+  for (const auto& e : std::filesystem::directory_iterator(dir_))
+    EXPECT_EQ(e.path().filename().string().find(".rank-"), std::string::npos) << e.path();
+  EXPECT_EQ(query_count(path("mpi.sqlite"), "SELECT count(*) FROM runs WHERE shard = 'mpi 2 ranks'"), 1);
+  EXPECT_EQ(query_count(path("mpi.sqlite"), "SELECT count(*) FROM configs"), 2);
+
+  run_json("sweep " + spec + " --db " + path("one.sqlite") + " --threads 1", 0);
+  EXPECT_EQ(test::unit_results(path("mpi.sqlite")), test::unit_results(path("one.sqlite")));
+  EXPECT_EQ(test::rollout_results(path("mpi.sqlite")), test::rollout_results(path("one.sqlite")));
+}
+
+TEST_F(SweepCli, ExportCsvWritesEveryTable) {
+  const std::string spec = test::write_file(dir_ / "spec.yaml", "n: 5\nseeds: [3]\ntasks:\n  - file: " +
+                                                                    test::source_task("two_blocks") +
+                                                                    "\n    strategies: [slide]\n")
+                               .string();
+  run_json("sweep " + spec + " --db " + path("r.sqlite") + " --threads 1", 0);
+  const nlohmann::json j = run_json("export-csv " + path("r.sqlite") + " -o " + path("csv"), 0);
+  ASSERT_EQ(j["files"].size(), 6u);
+  for (const char* name : {"runs", "configs", "predictions", "rollouts", "metrics", "summary"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "csv" / (std::string(name) + ".csv"))) << name;
+  std::ifstream in(dir_ / "csv" / "rollouts.csv");
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 5);  // header + 5 rollouts of the one-motion strategy
+  std::ifstream summary(dir_ / "csv" / "summary.csv");
+  std::string header, row;
+  std::getline(summary, header);
+  std::getline(summary, row);
+  EXPECT_EQ(header.rfind("config_id,unit_key,task,strategy,n,seed,mode,sticking_trials,reliable,", 0), 0u)
+      << header;
+  EXPECT_NE(row.find(",two_blocks,slide,5,3,uniform,0,1,"), std::string::npos) << row;  // slide is reliable
+  run_json("export-csv " + path("missing.sqlite") + " -o " + path("csv2"), 2);
+}
+
+TEST_F(SweepCli, BadSpecsExitWithStatusTwo) {
+  const std::string bad_override =
+      test::write_file(dir_ / "bad.yaml", two_unit_spec() + "    grid:\n      theta_v: [0.2, 1.7]\n")
+          .string();
+  nlohmann::json j = run_json("sweep " + bad_override + " --db " + path("r.sqlite"), 2);
+  EXPECT_EQ(j["error"]["file"], bad_override);
+  EXPECT_EQ(j["error"]["key"], "tasks[0].grid.theta_v[1]");
+  EXPECT_NE(j["error"]["reason"].get<std::string>().find("must be < pi/2"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(path("r.sqlite")));  // rejected before any work
+
+  const std::string unknown =
+      test::write_file(dir_ / "unknown.yaml", "n: 5\nseeds: [1]\nrollouts: 3\n").string();
+  j = run_json("sweep " + unknown + " --db " + path("r.sqlite"), 2);
+  EXPECT_EQ(j["error"]["key"], "rollouts");
+  run_json("sweep " + path("no-such-spec.yaml") + " --db " + path("r.sqlite"), 2);
+  const std::string good = test::write_file(dir_ / "good.yaml", two_unit_spec()).string();
+  j = run_json("sweep " + good + " --db " + path("r.sqlite") + " --shard 2/2", 2);
+  EXPECT_EQ(j["error"]["key"], "--shard");
+  // --list needs no database and shows the shard's units.
+  j = run_json("sweep " + good + " --list --shard 1/2", 0);
+  ASSERT_EQ(j["units"].size(), 1u);
+  EXPECT_EQ(j["units"][0]["strategy"], "slide");
+  EXPECT_EQ(j["total"], 2);
+}
+
+}  // namespace
+}  // namespace cmt

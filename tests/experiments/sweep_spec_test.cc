@@ -1,0 +1,266 @@
+// Sweep specs (docs/sweeps.md): strict parsing with file/key/reason errors, override values checked by the
+// task loader, the expansion into units (order, counts, stable keys), random draws and shards.
+#include "experiments/sweep_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "controllers/random.h"
+#include "experiments/stable_hash.h"
+#include "experiments/sweep_units.h"
+#include "models/task_error.h"
+#include "models/task_loader.h"
+#include "tests/experiments/sweep_test_util.h"
+
+namespace cmt {
+namespace {
+
+using test::source_task;
+
+const std::string kTwoBlocks = source_task("two_blocks");
+const std::string kCube = source_task("cube");
+
+// A spec with two_blocks (strategies down, slide) and the given extra lines under the task entry.
+std::string two_blocks_spec(const std::string& task_extra, const std::string& top = "n: 10\nseeds: [1]\n") {
+  return top + "tasks:\n  - file: " + kTwoBlocks + "\n    strategies: [down, slide]\n" + task_extra;
+}
+
+SweepSpec parse(const std::string& text) { return parse_sweep_spec(text, "spec.yaml", "/"); }
+
+// Parsing must fail with this key and a reason containing `reason_part`.
+void expect_error(const std::string& text, const std::string& key, const std::string& reason_part) {
+  try {
+    const SweepSpec spec = parse(text);
+    expand_units(spec);
+    ADD_FAILURE() << "no error for key " << key << " in:\n" << text;
+  } catch (const TaskError& e) {
+    EXPECT_EQ(e.file(), "spec.yaml") << e.what();
+    EXPECT_EQ(e.key(), key) << e.what();
+    EXPECT_NE(e.reason().find(reason_part), std::string::npos) << e.what();
+  }
+}
+
+TEST(SweepSpec, StructuralErrorsNameFileKeyAndReason) {
+  expect_error("n: 10\nseeds: [1]\nseed: 3\ntasks: []\n", "seed", "unknown key");
+  expect_error("seeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    strategies: [down]\n", "n",
+               "missing required key");
+  expect_error(two_blocks_spec("", "n: 0\nseeds: [1]\n"), "n", "must be in [1, 10000000]");
+  expect_error(two_blocks_spec("", "n: 2.5\nseeds: [1]\n"), "n", "expected an integer");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: []\n"), "seeds", "the list is empty");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [1, -4]\n"), "seeds[1]", "must be in [0, ");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [3, 3]\n"), "seeds[1]", "duplicated seed 3");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\nmode: random\n"), "mode", "uniform or extreme");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\nsticking_trials: -1\n"), "sticking_trials",
+               "must be in [0, ");
+  expect_error("n: 10\nseeds: [1]\ntasks: [\n", "line 4, column 1", "malformed YAML");
+  expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: no_such_task.yaml\n    strategies: [down]\n",
+               "tasks[0].file", "cannot open the task file '/no_such_task.yaml'");
+  expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    stratgies: [down]\n",
+               "tasks[0].stratgies", "unknown key");
+  expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    strategies: [down, teach]\n",
+               "tasks[0].strategies[1]", "unknown strategy 'teach' (the task has: down, slide)");
+  expect_error(two_blocks_spec("    grid:\n      mu: [0.2]\n"), "tasks[0].grid.mu", "unknown key");
+  expect_error(two_blocks_spec("    grid:\n      friction: []\n"), "tasks[0].grid.friction",
+               "the list is empty");
+  expect_error(two_blocks_spec("    grid:\n      friction: [0.2, high]\n"), "tasks[0].grid.friction[1]",
+               "expected a number, got 'high'");
+}
+
+TEST(SweepSpec, OverridesThatBreakTheTaskNameTheSpecKey) {
+  // theta_v must be < pi/2 (task loader): the second grid value is the culprit.
+  expect_error(two_blocks_spec("    grid:\n      theta_v: [0.2, 1.6]\n"), "tasks[0].grid.theta_v[1]",
+               "the value 1.6 makes the task invalid: uncertainty.theta_v: must be < pi/2");
+  expect_error(two_blocks_spec("    grid:\n      friction: [0.25, -0.1]\n"), "tasks[0].grid.friction[1]",
+               "friction: friction coefficient must be >= 0");
+  expect_error(two_blocks_spec("    grid:\n      step: [0]\n"), "tasks[0].grid.step[0]",
+               "uncertainty.step: the spring interpolation step must be > 0");
+  expect_error(two_blocks_spec("    grid:\n      motions:\n        v1: [[0, 0, 0]]\n"),
+               "tasks[0].grid.motions.v1[0]", "the commanded velocity direction is the zero vector");
+  expect_error(two_blocks_spec("    grid:\n      motions:\n        v1: [[0, -1]]\n"),
+               "tasks[0].grid.motions.v1[0]", "expected 3 numbers, got 2");
+  expect_error(two_blocks_spec("    grid:\n      motions:\n        v9: [[0, 0, -1]]\n"),
+               "tasks[0].grid.motions.v9", "the task has no motion 'v9' (it has: v1, v2)");
+  // Random ranges: both ends must be valid.
+  expect_error(two_blocks_spec(
+                   "    random:\n      count: 3\n      seed: 1\n      ranges:\n        theta_v: [0.1, 2]\n"),
+               "tasks[0].random.ranges.theta_v", "the value 2.0 makes the task invalid: uncertainty.theta_v");
+  expect_error(
+      two_blocks_spec(
+          "    random:\n      count: 3\n      seed: 1\n      ranges:\n        friction: [0.4, 0.1]\n"),
+      "tasks[0].random.ranges.friction", "the low end exceeds the high end");
+  expect_error(
+      two_blocks_spec(
+          "    random:\n      count: 0\n      seed: 1\n      ranges:\n        friction: [0.1, 0.4]\n"),
+      "tasks[0].random.count", "must be in [1, ");
+  expect_error(
+      two_blocks_spec("    grid:\n      friction: [0.2]\n    random:\n      count: 2\n      seed: 1\n"
+                      "      ranges:\n        friction: [0.1, 0.4]\n"),
+      "tasks[0].random.ranges.friction", "also in the grid");
+}
+
+TEST(SweepSpec, GridExpandsInDocumentedOrder) {
+  const SweepSpec spec =
+      parse(two_blocks_spec("    grid:\n      friction: [0.2, 0.3]\n      theta_v: [0.1, 0.2, 0.24]\n",
+                            "n: 25\nseeds: [1, 2]\nmode: extreme\nsticking_trials: 5\n"));
+  const std::vector<SweepUnit> units = expand_units(spec);
+  // 2 frictions x 3 angles x 2 strategies x 2 seeds; seeds innermost, then strategies, then the last grid
+  // key.
+  ASSERT_EQ(units.size(), 24u);
+  EXPECT_EQ(units[0].params, nlohmann::json({{"friction", 0.2}, {"theta_v", 0.1}}));
+  EXPECT_EQ(units[0].strategy, "down");
+  EXPECT_EQ(units[0].seed, 1u);
+  EXPECT_EQ(units[1].seed, 2u);
+  EXPECT_EQ(units[2].strategy, "slide");
+  EXPECT_EQ(units[4].params, nlohmann::json({{"friction", 0.2}, {"theta_v", 0.2}}));
+  EXPECT_EQ(units[12].params, nlohmann::json({{"friction", 0.3}, {"theta_v", 0.1}}));
+  EXPECT_EQ(units[23].params, nlohmann::json({{"friction", 0.3}, {"theta_v", 0.24}}));
+  std::set<std::string> keys;
+  for (std::size_t i = 0; i < units.size(); ++i) {
+    EXPECT_EQ(units[i].index, static_cast<int>(i));
+    EXPECT_EQ(units[i].task, "two_blocks");
+    EXPECT_EQ(units[i].n, 25);
+    EXPECT_EQ(units[i].mode, SampleMode::kExtreme);
+    EXPECT_EQ(units[i].sticking_trials, 5);
+    EXPECT_EQ(units[i].unit_key.size(), 32u);
+    keys.insert(units[i].unit_key);
+  }
+  EXPECT_EQ(keys.size(), 24u);
+  // The overridden text is a valid task carrying the values; everything else is untouched.
+  const Task t = parse_task_string(units[23].task_yaml, "unit 23");
+  EXPECT_EQ(t.friction, 0.3);
+  EXPECT_EQ(t.uncertainty.theta_v, 0.24);
+  EXPECT_EQ(t.uncertainty.eps_s, 0.2);
+  EXPECT_EQ(t.uncertainty.theta_f, 0.3);
+  EXPECT_EQ(t.motions.size(), 2u);
+  // Same spec, same keys: a rerun recognises its units.
+  const std::vector<SweepUnit> again = expand_units(spec);
+  for (std::size_t i = 0; i < units.size(); ++i) EXPECT_EQ(again[i].unit_key, units[i].unit_key);
+}
+
+TEST(SweepSpec, MotionOverridesKeepTheMotionKind) {
+  const SweepSpec spec =
+      parse("n: 5\nseeds: [1]\ntasks:\n  - file: " + kCube +
+            "\n    strategies: [stick]\n    grid:\n      motions:\n        p1: [[0, 0, -2.5], "
+            "[0.25, 0, -3]]\n  - file: " +
+            kTwoBlocks + "\n    strategies: [slide]\n    grid:\n      motions:\n        v2: [[-1, 0, -2]]\n");
+  const std::vector<SweepUnit> units = expand_units(spec);
+  ASSERT_EQ(units.size(), 3u);
+  EXPECT_EQ(units[0].params, nlohmann::json({{"motions.p1", {0, 0, -2.5}}}));
+  const Task cube = parse_task_string(units[1].task_yaml, "cube");
+  ASSERT_EQ(cube.motions.size(), 1u);
+  EXPECT_EQ(cube.motions[0].kind, Motion::Kind::kSpring);
+  EXPECT_EQ(cube.motions[0].target, Vec3(0.25, 0, -3));  // a spring's commanded position, as given
+  const Task blocks = parse_task_string(units[2].task_yaml, "two_blocks");
+  const Motion* v2 = blocks.find_motion("v2");
+  ASSERT_NE(v2, nullptr);
+  EXPECT_EQ(v2->kind, Motion::Kind::kDamper);
+  EXPECT_NEAR((v2->target - Vec3(-1, 0, -2) / std::sqrt(5.0)).norm(), 0, 1e-15);  // normalized on load
+  EXPECT_EQ(blocks.find_motion("v1")->target, Vec3(0, 0, -1));                    // untouched
+}
+
+TEST(SweepSpec, RandomDrawsComeFromTheSeed) {
+  auto draws = [&](int seed) {
+    std::string random = "    random:\n      count: 4\n      seed: ";
+    random += std::to_string(seed);
+    random +=
+        "\n      ranges:\n        friction: [0.1, 0.4]\n        motions:\n"
+        "          v2: {min: [-1, 0, -1], max: [-0.5, 0, -0.5]}\n";
+    return expand_units(parse(two_blocks_spec(random)));
+  };
+  const std::vector<SweepUnit> a = draws(3), b = draws(3), c = draws(4);
+  ASSERT_EQ(a.size(), 8u);  // 4 draws x 2 strategies
+  for (int j = 0; j < 4; ++j) {
+    // Draw j reads its own stream (seed, j): friction first, then the motion's components in order; a
+    // component whose range is a single value is that value.
+    Rng rng = rollout_stream(3, j);
+    const double friction = uniform(rng, 0.1, 0.4);
+    const double vx = uniform(rng, -1, -0.5);
+    const double vz = uniform(rng, -1, -0.5);
+    const nlohmann::json& p = a[2 * j].params;
+    EXPECT_EQ(p["friction"].get<double>(), friction);
+    EXPECT_EQ(p["motions.v2"], nlohmann::json({vx, 0.0, vz}));
+    EXPECT_GE(friction, 0.1);
+    EXPECT_LT(friction, 0.4);
+    EXPECT_EQ(a[2 * j + 1].params, p);  // both strategies see the same draw
+    EXPECT_EQ(b[2 * j].unit_key, a[2 * j].unit_key);
+    EXPECT_NE(c[2 * j].params, p);
+    // The task text holds the drawn value exactly.
+    EXPECT_EQ(parse_task_string(a[2 * j].task_yaml, "draw").friction, friction);
+  }
+}
+
+TEST(SweepSpec, RepeatedValuesRunOnce) {
+  int duplicates = -1;
+  const auto units =
+      expand_units(parse(two_blocks_spec("    grid:\n      friction: [0.25, 0.3, 0.25]\n")), &duplicates);
+  EXPECT_EQ(units.size(), 4u);  // (0.25, 0.3) x (down, slide)
+  EXPECT_EQ(duplicates, 2);
+  EXPECT_EQ(units[3].index, 3);
+}
+
+TEST(SweepSpec, UnitKeyIgnoresCommentsButNotValues) {
+  const auto dir = test::fresh_dir("spec-key");
+  std::ifstream in(kTwoBlocks);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  test::write_file(dir / "commented.yaml", "# another comment\n" + text + "\n# trailing comment\n");
+  const std::string spec_text =
+      "n: 10\nseeds: [1]\ntasks:\n  - file: commented.yaml\n    strategies: [down]\n"
+      "  - file: " +
+      kTwoBlocks + "\n    strategies: [down]\n";
+  int duplicates = 0;
+  const auto units = expand_units(parse_sweep_spec(spec_text, "spec.yaml", dir), &duplicates);
+  EXPECT_EQ(units.size(), 1u);  // the same task text: one unit
+  EXPECT_EQ(duplicates, 1);
+  const std::string key = units[0].unit_key;
+  const std::string yaml = units[0].task_yaml;
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 2, SampleMode::kUniform, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 11, 1, SampleMode::kUniform, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kExtreme, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 1, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 0, 399), key);
+  EXPECT_NE(make_unit_key(yaml, "slide", 10, 1, SampleMode::kUniform, 0, 400), key);
+  EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 0, 400), key);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StableHash, Fnv1a128TestVectors) {
+  // The offset basis is the hash of the empty string; "a" and "foobar" are from the FNV reference test
+  // vectors (IETF draft-eastlake-fnv, FNV-1a 128-bit).
+  EXPECT_EQ(fnv1a128_hex(""), "6c62272e07bb014262b821756295c58d");
+  EXPECT_EQ(fnv1a128_hex("a"), "d228cb696f1a8caf78912b704e4a8964");
+  EXPECT_EQ(fnv1a128_hex("foobar"), "343e1662793c64bf6f0d3597ba446f18");
+}
+
+TEST(StableHash, FieldsAreUnambiguous) {
+  EXPECT_EQ(HashInput().add("ab").add("c").text(), "2:ab\n1:c\n");
+  EXPECT_NE(HashInput().add("ab").add("c").text(), HashInput().add("a").add("bc").text());
+  EXPECT_EQ(HashInput().add(-12).text(), "3:-12\n");
+}
+
+TEST(Shard, ParsesAndPartitions) {
+  const Shard s = parse_shard("1/3");
+  EXPECT_EQ(s.index, 1);
+  EXPECT_EQ(s.count, 3);
+  for (const std::string bad : {"3/3", "0/0", "a/b", "-1/2", "1", "1/2/3", ""}) {
+    try {
+      parse_shard(bad);
+      ADD_FAILURE() << bad;
+    } catch (const TaskError& e) {
+      EXPECT_EQ(e.key(), "--shard") << bad;
+    }
+  }
+  // Every index in exactly one of the 3 shards: 0 3 6 9 | 1 4 7 | 2 5 8.
+  std::vector<int> owner(10, -1);
+  for (int shard = 0; shard < 3; ++shard)
+    for (int i = 0; i < 10; ++i)
+      if (Shard{shard, 3}.contains(i)) {
+        EXPECT_EQ(owner[i], -1);
+        owner[i] = shard;
+      }
+  EXPECT_EQ(owner, (std::vector<int>{0, 1, 2, 0, 1, 2, 0, 1, 2, 0}));
+}
+
+}  // namespace
+}  // namespace cmt
