@@ -60,6 +60,8 @@ class SpringProjector {
         }
       }
       strong_poly_.push_back(strong_poly);
+      no_slide_.push_back(inner_disk_set(fi, rad.center, no_slide_radius(fi)));
+      no_leave_.push_back(inner_disk_set(fi, rad.center, no_leave_radius(fi)));
       Points2 w;
       if (std::isinf(rad.weak))
         w = r_.face_polygon[fi];
@@ -148,15 +150,6 @@ class SpringProjector {
   void add_vertex(int vi) {
     if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
   }
-  void absorb(const std::vector<FlightHit>& hits) {
-    for (const FlightHit& h : hits) {
-      if (!h.region.is_empty())
-        add_entry_region(h.face, h.region);
-      else
-        add_entry_lower(h.face, h.lower);
-    }
-  }
-
   // ---- leaving and staying on a face ----
   // With x̂ within eps_s of x on the face, p − x̂ has normal part (toward free space) <= −depth + eps_s and
   // tangential part <= |x − p'| + eps_s; the velocity is within theta_v of it. It always points into the
@@ -183,6 +176,22 @@ class SpringProjector {
         return true;
     return false;
   }
+  // The same tests pointwise: a point of face fi strictly within no_slide_radius of p' must leave (the pull
+  // points into free space for every sensed position), one within no_leave_radius must stay. 0: no such
+  // points. From (−depth − eps_s) = tan(theta_v) (d + eps_s), resp. (depth − eps_s) = tan(theta_v) (d + eps_s).
+  double no_slide_radius(int fi) const {
+    return std::max(0.0, (-depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s);
+  }
+  double no_leave_radius(int fi) const { return std::max(0.0, (depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
+  // The part of the face inside a polygon inscribed in that disk, shrunk by the decision margin (what is
+  // subtracted is inside the open disk: sound).
+  PolygonSet2 inner_disk_set(int fi, const Vec3& center, double radius) const {
+    if (!std::isfinite(radius)) return PolygonSet2(to_polygon(r_.face_polygon[fi]));
+    const double r = radius - kDecisionMargin * c_.scale();
+    if (r <= 0) return PolygonSet2();
+    const Points2 d = clip(chart_disk(r_, fi, center, r, false), r_.face_polygon[fi]);
+    return d.size() >= 3 ? PolygonSet2(to_polygon(d)) : PolygonSet2();
+  }
   double max_dist(int fi, const std::vector<Vec3>& pts) const {
     double d = 0;
     for (const Vec3& x : pts) d = std::max(d, (x - centers_[fi]).norm());
@@ -195,11 +204,49 @@ class SpringProjector {
   }
 
   // ---- processing ----
+  // Entries are slid first, so that one flight per face step covers the landings and their strips.
   void process_face(int fi) {
     ++steps_;
+    slide_entries(fi);
+    process_new_parts(fi);
+  }
+
+  // Alg 4.4: the entries minus the strong configurations and minus the no-slide disk, one strip from their
+  // hull (it contains the strips from each: same generators, larger hull), clipped to the face; the part
+  // outside the no-slide disk is reached.
+  void slide_entries(int fi) {
+    PolygonSet2 entry = std::move(pend_entry_[fi]);
+    pend_entry_[fi] = PolygonSet2();
+    std::vector<Points2> lower = std::move(pend_entry_lower_[fi]);
+    pend_entry_lower_[fi].clear();
+    if (entry.is_empty() && lower.empty()) return;
+    entry.difference(strong_[fi]);
+    entry.difference(no_slide_[fi]);
+    Points2 entry_pts;
+    for (const Points2& part : convex_pieces(entry))
+      entry_pts.insert(entry_pts.end(), part.begin(), part.end());
+    for (const Points2& l : lower) {
+      bool stuck = !strong_poly_[fi].empty();  // inside the strong configurations: it sticks (Alg 4.4)
+      for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
+      if (!stuck && may_stay(fi, lifted(fi, l))) entry_pts.insert(entry_pts.end(), l.begin(), l.end());
+    }
+    const Points2 entry_hull = hull_or_points(entry_pts);
+    if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
+    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_, eps_o_);
+    if (strip.size() >= 3) {
+      // The slide ends where the robot must leave the face: the strip outside the no-slide disk.
+      PolygonSet2 slid(to_polygon(strip));
+      slid.difference(no_slide_[fi]);
+      add_reached_region(fi, slid);
+    } else if (!strip.empty()) {
+      add_reached_lower(fi, strip);
+    }
+  }
+
+  // New reached parts: the edges and corners they touch, then one flight from the hull of what may leave.
+  void process_new_parts(int fi) {
     const Face& face = c_.faces()[fi];
     const FaceChart& chart = r_.charts[fi];
-    // New reached parts: edges and corners, then flight from outside the strong configurations.
     PolygonSet2 fresh = std::move(pend_new_[fi]);
     pend_new_[fi] = PolygonSet2();
     std::vector<Points2> news = convex_pieces(fresh);
@@ -218,39 +265,20 @@ class SpringProjector {
           add_vertex(vid - nf_ - ne_);
     }
     fresh.difference(strong_[fi]);
+    // Points inside the no-leave disk cannot leave the face: they do not fly.
+    fresh.difference(no_leave_[fi]);
     // One source per face step: the hull of everything new outside the strong configurations (the volume
     // from a hull contains the volumes from its parts: sound, looser, far fewer exact sections).
     Points2 fly_pts;
     for (const Points2& part : convex_pieces(fresh)) fly_pts.insert(fly_pts.end(), part.begin(), part.end());
     for (const Points2& l : news)
-      if (l.size() < 3) fly_pts.insert(fly_pts.end(), l.begin(), l.end());
+      if (l.size() < 3 && may_leave(fi, lifted(fi, l))) fly_pts.insert(fly_pts.end(), l.begin(), l.end());
     const Points2 fly_hull = hull_or_points(fly_pts);
     if (!fly_hull.empty() && may_leave(fi, lifted(fi, fly_hull))) {
       std::vector<Point3> src;
       for (const Point2& q : fly_hull) src.push_back(chart.lift(q));
       fly(src, fi);
     }
-    // Entries: Alg 4.4 (minus the strong configurations, the strip, reached).
-    PolygonSet2 entry = std::move(pend_entry_[fi]);
-    pend_entry_[fi] = PolygonSet2();
-    entry.difference(strong_[fi]);
-    Points2 entry_pts;
-    for (const Points2& part : convex_pieces(entry))
-      entry_pts.insert(entry_pts.end(), part.begin(), part.end());
-    for (const Points2& l : pend_entry_lower_[fi]) {
-      bool stuck = !strong_poly_[fi].empty();  // inside the strong configurations: it sticks (Alg 4.4)
-      for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
-      if (!stuck) entry_pts.insert(entry_pts.end(), l.begin(), l.end());
-    }
-    pend_entry_lower_[fi].clear();
-    // The strip from the hull of the entries contains the strips from each (same generators, larger hull).
-    const Points2 entry_hull = hull_or_points(entry_pts);
-    if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
-    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_, eps_o_);
-    if (strip.size() >= 3)
-      add_reached_region(fi, PolygonSet2(to_polygon(strip)));
-    else if (!strip.empty())
-      add_reached_lower(fi, strip);
   }
 
   static Points2 hull_or_points(const Points2& pts) {
@@ -261,7 +289,12 @@ class SpringProjector {
 
   void fly(const std::vector<Point3>& src, int source_face) {
     flew_ = true;
-    absorb(spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_));
+    for (FlightHit& h : spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_)) {
+      if (!h.region.is_empty())
+        add_entry_region(h.face, h.region);
+      else
+        add_entry_lower(h.face, h.lower);
+    }
   }
 
   // The edge's parameter interval about the projection q of p where motion along the edge may go either way
@@ -391,6 +424,9 @@ class SpringProjector {
   std::vector<double> depth_;
   std::vector<PolygonSet2> strong_;
   std::vector<Points2> strong_poly_;
+  std::vector<PolygonSet2> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
+  std::vector<std::vector<EdgeInterval>> stay_components_;
+  static constexpr bool kEdgeStay = false;  // per edge (edge_stay_components)
   std::vector<Points2> weak_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
   std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;
@@ -410,3 +446,5 @@ SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet
 }
 
 }  // namespace cmt
+
+
