@@ -55,6 +55,21 @@ bool ForceDirectionSet::contains(const Vec3& force) const {
   return false;
 }
 
+TerminationSpec termination_spec(const MotionTermination& terminate) {
+  TerminationSpec spec;
+  if (!terminate.position.empty()) {
+    PositionSet p;
+    for (const AxisBox& b : terminate.position) p.add_box(b);
+    spec.sensed_position = std::move(p);
+  }
+  if (!terminate.force.empty()) {
+    ForceDirectionSet f;
+    for (const ForceCone& c : terminate.force) f.add_cone(c.direction, c.angle);
+    spec.sensed_force = std::move(f);
+  }
+  return spec;
+}
+
 TerminationMonitor::TerminationMonitor(TerminationSpec spec, double reference_speed, double guard_force,
                                        double control_step)
     : spec_(std::move(spec)),

@@ -67,6 +67,10 @@ struct TerminationSpec {
   std::optional<ForceDirectionSet> sensed_force;  // type 3
 };
 
+// The monitor's sets for a task motion's termination parameters (models/task.h MotionTermination): boxes
+// become P_s, cones F_s; a list that is not given stays unset.
+TerminationSpec termination_spec(const MotionTermination& terminate);
+
 class TerminationMonitor {
  public:
   TerminationMonitor(TerminationSpec spec, double reference_speed, double guard_force, double control_step);

@@ -1,9 +1,11 @@
 // cmt calibrate-friction: the simulated robot against Coulomb's law (sim/calibration.h, docs/rollouts.md).
 #include <iostream>
+#include <memory>
 
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
 #include "sim/calibration.h"
+#include "sim/mjcf_export.h"
 
 namespace cmt {
 
@@ -49,8 +51,15 @@ void add_calibrate_friction_command(CLI::App& app, CommandState& state) {
       "calibrate-friction",
       "Check the simulated robot against Coulomb friction on a face and in a concave edge");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
-  cmd->callback([&state] {
-    const CalibrationResult r = calibrate_friction();
+  auto soft_layer = std::make_shared<bool>(false);
+  cmd->add_flag("--soft-layer", *soft_layer,
+                "use the soft-surface-layer scene (sim/mjcf_export.h soft_layer_scene) instead of the rollouts'");
+  cmd->callback([&state, soft_layer] {
+    const CalibrationResult r =
+        *soft_layer ? calibrate_friction({ControllerForm::kImpedance, ControllerForm::kAdmittance,
+                                          ControllerForm::kPosition},
+                                         soft_layer_scene())
+                    : calibrate_friction();
     if (state.json) {
       print_json(calibration_json(r));
     } else {

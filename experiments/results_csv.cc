@@ -68,7 +68,8 @@ void write_query(SqliteDb& db, const std::string& sql, const std::filesystem::pa
 
 // The metric and verdict columns of summary.csv, after the configuration and parameter columns.
 constexpr const char* kSummaryResultColumns =
-    "p.reliable, p.failure, m.rollouts, m.successes, m.unstable, m.ends, m.outside, m.soundness, m.coverage, "
+    "p.reliable, p.failure, p.verifier_theta_v, m.rollouts, m.successes, m.unstable, m.ends, m.outside, "
+    "m.soundness, m.coverage, "
     "m.coverage_radius, m.contact_tolerance, m.soundness_bug, m.counterexample IS NOT NULL AS "
     "has_counterexample, "
     "m.verify_seconds, m.rollout_seconds";
@@ -88,10 +89,10 @@ void write_summary(SqliteDb& db, const std::filesystem::path& path) {
     }
   }
   auto st = db.prepare(
-      "SELECT c.config_id, c.unit_key, c.task, c.strategy, c.n, c.seed, c.mode, c.sticking_trials, "
-      "c.params, " +
+      "SELECT c.config_id, c.unit_key, c.task, c.strategy, c.n, c.seed, c.mode, c.controller, "
+      "c.sticking_trials, c.params, " +
       std::string(kSummaryResultColumns) + from);
-  constexpr int kParamsColumn = 8;
+  constexpr int kParamsColumn = 9;
   CsvFile csv(path);
   std::vector<std::string> header;
   for (int c = 0; c < st.columns(); ++c) {

@@ -46,7 +46,7 @@ MergeCounts merge_attached(SqliteDb& db) {
   db.exec(std::string("INSERT OR IGNORE INTO main.configs(") + s::kConfigColumns +
           ") SELECT (SELECT to_id FROM merge_run_map WHERE from_id = c.run_id), unit_key, task, task_file, "
           "task_yaml, strategy, params, n, seed, mode, 'pending', NULL, unit_index, sticking_trials, "
-          "counterexample_budget FROM src.configs AS c ORDER BY c.config_id");
+          "counterexample_budget, controller FROM src.configs AS c ORDER BY c.config_id");
   c.new_units = count(db, "SELECT count(*) FROM main.configs") - before;
   c.already_done =
       count(db,

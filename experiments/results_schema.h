@@ -29,14 +29,17 @@ CREATE TABLE configs(
   finished TEXT,
   unit_index INTEGER,               -- addition: position in the spec's expansion
   sticking_trials INTEGER,          -- addition
-  counterexample_budget INTEGER     -- addition
+  counterexample_budget INTEGER,    -- addition
+  controller TEXT                   -- addition: impedance | admittance | position (cmt validate --controller)
 );
 CREATE TABLE predictions(
   config_id INTEGER PRIMARY KEY,
   reliable INTEGER,
   failure TEXT,
   verify_seconds REAL,
-  verify_json TEXT
+  verify_json TEXT,
+  verifier_theta_v REAL,            -- addition: the theta_v the verifier used (widened for admittance)
+  verifier_model TEXT               -- addition: JSON, that theta_v and why (experiments/verifier_model.h)
 );
 CREATE TABLE rollouts(
   config_id INTEGER,
@@ -76,8 +79,9 @@ CREATE INDEX configs_task_strategy ON configs(task, strategy);
 // Every column after the primary key config_id, in table order (merge copies them by name).
 inline constexpr const char* kConfigColumns =
     "run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, mode, status, finished, "
-    "unit_index, sticking_trials, counterexample_budget";
-inline constexpr const char* kPredictionColumns = "reliable, failure, verify_seconds, verify_json";
+    "unit_index, sticking_trials, counterexample_budget, controller";
+inline constexpr const char* kPredictionColumns =
+    "reliable, failure, verify_seconds, verify_json, verifier_theta_v, verifier_model";
 inline constexpr const char* kRolloutColumns =
     "rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, termination, inside, distance, "
     "success, unstable";

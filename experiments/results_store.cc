@@ -54,8 +54,8 @@ void ResultsStore::register_units(std::int64_t run_id, const std::vector<SweepUn
   auto st = db_.prepare(
       "INSERT OR IGNORE INTO configs(run_id, unit_key, task, task_file, task_yaml, strategy, params, n, "
       "seed, "
-      "mode, unit_index, sticking_trials, counterexample_budget) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-      "?)");
+      "mode, unit_index, sticking_trials, counterexample_budget, controller) VALUES (?, ?, ?, ?, ?, ?, ?, ?, "
+      "?, ?, ?, ?, ?, ?)");
   for (const SweepUnit& u : units) {
     if (run_id > 0)
       st.bind(1, run_id);
@@ -72,7 +72,8 @@ void ResultsStore::register_units(std::int64_t run_id, const std::vector<SweepUn
         .bind(10, sample_mode_name(u.mode))
         .bind(11, u.index)
         .bind(12, u.sticking_trials)
-        .bind(13, u.counterexample_budget);
+        .bind(13, u.counterexample_budget)
+        .bind(14, controller_form_name(u.controller));
     st.run();
   }
   t.commit();
@@ -113,12 +114,14 @@ bool ResultsStore::commit_unit(const std::string& unit_key, const UnitRecord& r)
     db_.prepare(std::string("DELETE FROM ") + table + " WHERE config_id = ?").bind(1, id).run();
 
   db_.prepare(std::string("INSERT INTO predictions(config_id, ") + s::kPredictionColumns +
-              ") VALUES (?, ?, ?, ?, ?)")
+              ") VALUES (?, ?, ?, ?, ?, ?, ?)")
       .bind(1, id)
       .bind(2, r.reliable)
       .bind(3, r.failure)
       .bind(4, r.verify_seconds)
       .bind(5, r.verify_json)
+      .bind(6, r.verifier_theta_v)
+      .bind(7, r.verifier_model)
       .run();
 
   auto ins = db_.prepare(std::string("INSERT INTO rollouts(config_id, ") + s::kRolloutColumns +

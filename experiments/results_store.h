@@ -19,8 +19,9 @@
 
 namespace cmt {
 
-// PRAGMA user_version of a cmt results database; other values are refused.
-inline constexpr int kResultsSchemaVersion = 1;
+// PRAGMA user_version of a cmt results database; other values are refused. 2: configs.controller and
+// predictions.verifier_theta_v / verifier_model (the controller form became a unit field).
+inline constexpr int kResultsSchemaVersion = 2;
 
 // One row of `rollouts`: the end of one motion of one rollout.
 struct RolloutRow {
@@ -43,6 +44,8 @@ struct UnitRecord {
   std::string failure;
   double verify_seconds = 0;
   std::string verify_json;  // verify_json(task, prediction, seconds)
+  double verifier_theta_v = 0;  // the theta_v the verifier used (widened for the admittance form)
+  std::string verifier_model;   // verifier_model_json: that theta_v and why
   // rollouts
   std::vector<RolloutRow> rollouts;
   // metrics

@@ -4,6 +4,8 @@
 #include <memory>
 #include <utility>
 
+#include "experiments/unit_record_json.h"
+#include "experiments/verifier_budget.h"
 #include "experiments/verify_command.h"
 
 namespace cmt {
@@ -20,6 +22,8 @@ UnitRecord unit_record(const LoadedTask& task, const ValidationResult& v) {
   r.failure = v.prediction.failure;
   r.verify_seconds = v.verify_seconds;
   r.verify_json = verify_json(task, v.prediction, v.verify_seconds).dump();
+  r.verifier_theta_v = v.verifier.theta_v;
+  r.verifier_model = verifier_model_json(v.verifier).dump();
 
   std::map<std::pair<int, int>, const ObservedEnd*> ends;
   for (const ObservedEnd& e : v.ends) ends[{e.rollout, e.motion}] = &e;
@@ -86,10 +90,24 @@ UnitExecutor make_validation_executor() {
     options.seed = unit.seed;
     options.threads = threads;
     options.mode = unit.mode;
+    options.form = unit.controller;
     options.sticking_trials = unit.sticking_trials;
     options.counterexample_budget = unit.counterexample_budget;
-    const ValidationResult result = run_validation(cache->task, unit.strategy, options);
-    return unit_record(*cache->task, result);
+    const auto validate = [&](const ValidateOptions& o) {
+      return unit_record(*cache->task, run_validation(cache->task, unit.task_yaml, unit.strategy, o));
+    };
+    if (unit.verify_budget_seconds <= 0) return validate(options);
+    // In a child process the parent can kill when the verifier overruns (verifier_budget.h); the child's
+    // record comes back as text, bit for bit.
+    const ForkedRun run =
+        run_forked_with_budget(unit.verify_budget_seconds, [&](const std::function<void()>& phase_done) {
+          ValidateOptions o = options;
+          o.after_verify = phase_done;
+          return unit_record_to_text(validate(o));
+        });
+    if (!run.timed_out) return unit_record_from_text(run.payload);
+    options.verifier_timed_out_after = unit.verify_budget_seconds;
+    return validate(options);
   };
 }
 

@@ -12,7 +12,8 @@ namespace cmt {
 UnitRecord unit_record(const LoadedTask& task, const ValidationResult& result);
 
 // Loads each unit's task (reusing the last one: consecutive units of a sweep share their task text) and
-// validates the unit's strategy with its n, seed, mode, sticking trials and counterexample budget.
+// validates the unit's strategy with its n, seed, mode, controller form, sticking trials and counterexample
+// budget.
 UnitExecutor make_validation_executor();
 
 }  // namespace cmt

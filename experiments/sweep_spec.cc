@@ -129,8 +129,8 @@ class SpecParser {
     }
     const SpecNode root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
-    root.require_map(
-        {"description", "n", "seeds", "mode", "sticking_trials", "counterexample_budget", "tasks"});
+    root.require_map({"description", "n", "seeds", "mode", "controller", "sticking_trials",
+                      "counterexample_budget", "verify_budget_seconds", "tasks"});
     SweepSpec spec;
     spec.path = file_;
     spec.text = text;
@@ -148,11 +148,27 @@ class SpecParser {
       if (!mode) root.at("mode").fail("must be uniform or extreme, got '" + root.at("mode").string() + "'");
       spec.mode = *mode;
     }
+    if (root.has("controller")) {
+      const auto form = parse_controller_form(root.at("controller").string());
+      if (!form)
+        root.at("controller")
+            .fail("must be impedance, admittance or position, got '" + root.at("controller").string() + "'");
+      spec.controller = *form;
+    }
+    controller_ = spec.controller;
     if (root.has("sticking_trials"))
       spec.sticking_trials = static_cast<int>(root.at("sticking_trials").integer(0, kMaxSweepStickingTrials));
     if (root.has("counterexample_budget"))
       spec.counterexample_budget =
           static_cast<int>(root.at("counterexample_budget").integer(0, kMaxSweepCounterexampleBudget));
+    if (root.has("verify_budget_seconds")) {
+      const SpecNode budget = root.at("verify_budget_seconds");
+      spec.verify_budget_seconds = budget.number();
+      if (spec.verify_budget_seconds <= 0 || spec.verify_budget_seconds > kMaxSweepVerifyBudgetSeconds)
+        budget.fail(
+            "must be > 0 and <= " + std::to_string(static_cast<long long>(kMaxSweepVerifyBudgetSeconds)) +
+            " seconds (leave it out for no limit), got " + budget.raw().Scalar());
+    }
     const SpecNode tasks = root.at("tasks").list();
     for (std::size_t i = 0; i < tasks.size(); ++i) spec.tasks.push_back(parse_task(tasks.item(i)));
     return spec;
@@ -185,6 +201,14 @@ class SpecParser {
       }
       if (std::find(entry.strategies.begin(), entry.strategies.end(), name) != entry.strategies.end())
         strategies.item(i).fail("duplicated strategy '" + name + "'");
+      // Caught here rather than by the unit that would run it, hours into the sweep.
+      if (controller_ == ControllerForm::kPosition)
+        for (const std::string& motion : entry.base.find_strategy(name)->motions)
+          if (entry.base.find_motion(motion)->kind == Motion::Kind::kDamper)
+            strategies.item(i).fail(
+                "controller: position implements generalized springs only (Buckley "
+                "eq. 3.25); strategy '" +
+                name + "' has the damper motion '" + motion + "'");
       entry.strategies.push_back(name);
     }
 
@@ -321,6 +345,7 @@ class SpecParser {
 
   std::string file_;
   std::filesystem::path base_dir_;
+  ControllerForm controller_ = ControllerForm::kImpedance;
 };
 
 }  // namespace

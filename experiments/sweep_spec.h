@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "controllers/controller.h"
 #include "controllers/error_model.h"
 #include "experiments/task_overrides.h"
 #include "models/task.h"
@@ -22,6 +23,7 @@ inline constexpr long long kMaxSweepRollouts = 10'000'000;        // n per unit
 inline constexpr long long kMaxSweepRandomDraws = 1'000'000;      // random.count per task
 inline constexpr long long kMaxSweepStickingTrials = 10'000'000;  // sticking_trials per unit
 inline constexpr long long kMaxSweepCounterexampleBudget = 10'000'000;
+inline constexpr double kMaxSweepVerifyBudgetSeconds = 7 * 24 * 3600.0;  // a week: beyond it, no limit at all
 // Seeds are stored in SQLite INTEGER columns (signed 64-bit), so they must stay below 2^63.
 inline constexpr long long kMaxSweepSeed = 0x7fffffffffffffffLL;
 
@@ -41,8 +43,14 @@ struct SweepSpec {
   int n = 0;
   std::vector<std::uint64_t> seeds;
   SampleMode mode = SampleMode::kUniform;
+  // cmt validate --controller; impedance by default, as there (the verifier's own model; the admittance
+  // form is verified with a widened theta_v, experiments/verifier_model.h).
+  ControllerForm controller = ControllerForm::kImpedance;
   int sticking_trials = 0;
   int counterexample_budget = 400;  // ValidateOptions' default
+  // Wall-clock seconds a unit's verifier may take, 0 = no limit (experiments/verifier_budget.h): beyond it
+  // the unit records "verifier: timed out after B s" and its rollouts run without a prediction.
+  double verify_budget_seconds = 0;
   std::vector<SweepTaskEntry> tasks;
 };
 

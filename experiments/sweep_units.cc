@@ -12,7 +12,8 @@ namespace cmt {
 namespace {
 
 // Bumped whenever the meaning of a unit's fields changes, so old databases never match new units.
-constexpr const char* kUnitKeyVersion = "cmt-sweep-unit/1";
+// 2: the controller form is a field (validate's default changed from admittance to impedance).
+constexpr const char* kUnitKeyVersion = "cmt-sweep-unit/2";
 
 // The spec key of the override that the task loader's complaint is about (its key path starts with the
 // override's task path), else the task entry.
@@ -27,8 +28,8 @@ std::string culprit_key(const TaskError& e, const ParamSet& params, const std::s
 }  // namespace
 
 std::string make_unit_key(const std::string& task_yaml, const std::string& strategy, int n,
-                          std::uint64_t seed, SampleMode mode, int sticking_trials,
-                          int counterexample_budget) {
+                          std::uint64_t seed, SampleMode mode, ControllerForm controller, int sticking_trials,
+                          int counterexample_budget, double verify_budget_seconds) {
   HashInput in;
   in.add(kUnitKeyVersion)
       .add(task_yaml)
@@ -36,8 +37,10 @@ std::string make_unit_key(const std::string& task_yaml, const std::string& strat
       .add(n)
       .add(std::to_string(seed))
       .add(sample_mode_name(mode))
+      .add(controller_form_name(controller))
       .add(sticking_trials)
-      .add(counterexample_budget);
+      .add(counterexample_budget)
+      .add(nlohmann::json(verify_budget_seconds).dump());  // shortest round-trip text
   return fnv1a128_hex(in.text());
 }
 
@@ -59,8 +62,9 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
       for (const std::string& strategy : entry.strategies)
         for (const std::uint64_t seed : spec.seeds) {
           SweepUnit u;
-          u.unit_key = make_unit_key(yaml, strategy, spec.n, seed, spec.mode, spec.sticking_trials,
-                                     spec.counterexample_budget);
+          u.unit_key =
+              make_unit_key(yaml, strategy, spec.n, seed, spec.mode, spec.controller, spec.sticking_trials,
+                            spec.counterexample_budget, spec.verify_budget_seconds);
           if (!keys.insert(u.unit_key).second) {
             ++dropped;
             continue;
@@ -74,8 +78,10 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
           u.n = spec.n;
           u.seed = seed;
           u.mode = spec.mode;
+          u.controller = spec.controller;
           u.sticking_trials = spec.sticking_trials;
           u.counterexample_budget = spec.counterexample_budget;
+          u.verify_budget_seconds = spec.verify_budget_seconds;
           u.spec_key = entry.spec_key;
           units.push_back(std::move(u));
         }

@@ -23,16 +23,19 @@ struct SweepUnit {
   int n = 0;
   std::uint64_t seed = 0;
   SampleMode mode = SampleMode::kUniform;
+  ControllerForm controller = ControllerForm::kImpedance;
   int sticking_trials = 0;
   int counterexample_budget = 0;
-  std::string spec_key;  // tasks[i], for messages
+  double verify_budget_seconds = 0;  // 0 = no limit (experiments/verifier_budget.h)
+  std::string spec_key;              // tasks[i], for messages
 };
 
-// Hash of the task text after overrides, strategy, n, seed, mode, sticking trials and counterexample budget
-// (a format-version tag first; fnv1a128_hex, 32 hex digits).
+// Hash of the task text after overrides, strategy, n, seed, mode, controller form, sticking trials,
+// counterexample budget and verifier time budget (a format-version tag first; fnv1a128_hex, 32 hex digits).
+// The time budget is in it because a unit's result can depend on it (a timed-out verifier).
 std::string make_unit_key(const std::string& task_yaml, const std::string& strategy, int n,
-                          std::uint64_t seed, SampleMode mode, int sticking_trials,
-                          int counterexample_budget);
+                          std::uint64_t seed, SampleMode mode, ControllerForm controller, int sticking_trials,
+                          int counterexample_budget, double verify_budget_seconds = 0);
 
 // Every unit of the spec: tasks in spec order, then parameter sets (grid, then random draws), strategies and
 // seeds (innermost). A unit whose key repeats an earlier one (the same values listed twice) is dropped and

@@ -1,8 +1,10 @@
 // `cmt validate TASK --strategy NAME -n N --seed S [--threads T] [--mode uniform|extreme]
-// [--sticking-trials K] [--ends] --json`: the verifier's prediction against MuJoCo rollouts
+// [--controller impedance|admittance|position] [--sticking-trials K] [--ends] --json`: the verifier's
+// prediction against MuJoCo rollouts
 // (experiments/validation.h, docs/validation.md). Exit 0 when physics agrees with the prediction, 1 when it
 // contradicts it (an end outside the predicted set, a failure of a strategy verified reliable, a stick/slide
 // disagreement), 2 on bad input.
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -10,6 +12,7 @@
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
 #include "experiments/validation.h"
+#include "models/task_error.h"
 
 namespace cmt {
 namespace {
@@ -20,13 +23,23 @@ std::string point(const Vec3& p) {
   return os.str();
 }
 
+// The task file's text; a missing file is bad input naming it (like load_task).
+std::string read_task_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw TaskError(path, "", "cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
 void print_summary(const ValidationResult& r) {
   std::cout << r.task << " / " << r.strategy << ": verifier says "
             << (r.prediction.reliable ? "reliable" : "NOT reliable") << "; " << r.successes << "/"
             << r.rollouts.size() << " rollouts succeeded (" << r.unstable << " unstable)\n"
             << "  soundness " << r.soundness << " (" << r.outside << " of " << r.ends.size()
             << " motion ends outside the predicted sets, tolerance " << r.contact_tolerance << ")\n"
-            << "  coverage " << r.coverage << " (radius " << r.coverage_radius << ")\n";
+            << "  coverage " << r.coverage << " (radius " << r.coverage_radius << ")\n"
+            << "  verifier theta_v " << r.verifier.theta_v << ": " << r.verifier.reason << "\n";
   for (const ObservedEnd& e : r.worst)
     std::cout << "  outside: rollout " << e.rollout << " motion " << r.prediction.steps[e.motion].motion
               << " end " << point(e.end) << " at distance " << e.distance << "\n";
@@ -46,7 +59,7 @@ void print_summary(const ValidationResult& r) {
 
 void add_validate_command(CLI::App& app, CommandState& state) {
   struct Options {
-    std::string task, strategy, mode = "uniform", controller = "admittance";
+    std::string task, strategy, mode = "uniform", controller = "impedance";
     int n = 1000, threads = 0, sticking_trials = 0, budget = ValidateOptions{}.counterexample_budget;
     std::uint64_t seed = 1;
     bool ends = false;
@@ -64,7 +77,8 @@ void add_validate_command(CLI::App& app, CommandState& state) {
       ->check(CLI::IsMember({"uniform", "extreme"}))
       ->capture_default_str();
   cmd->add_option("--controller", o->controller,
-                  "controller form: admittance, impedance, or position (springs)")
+                  "controller form: impedance (default; the verifier's model), admittance (verified with "
+                  "theta_v widened by the sensed-force error), or position (springs)")
       ->check(CLI::IsMember({"admittance", "impedance", "position"}))
       ->capture_default_str();
   cmd->add_option("--sticking-trials", o->sticking_trials,
@@ -85,7 +99,9 @@ void add_validate_command(CLI::App& app, CommandState& state) {
                                  "must be >= 0, got " + std::to_string(o->sticking_trials));
     if (o->budget < 0)
       throw CLI::ValidationError("--search-budget", "must be >= 0, got " + std::to_string(o->budget));
-    const auto task = load_task(o->task);
+    // The text is kept: the admittance form re-loads it with a widened theta_v (verifier_model.h).
+    const std::string text = read_task_text(o->task);
+    const auto task = load_task_from_string(text, o->task);
     ValidateOptions options;
     options.n = o->n;
     options.seed = o->seed;
@@ -95,7 +111,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     options.form = *parse_controller_form(o->controller);
     options.sticking_trials = o->sticking_trials;
     options.counterexample_budget = o->budget;
-    const ValidationResult r = run_validation(task, o->strategy, options);
+    const ValidationResult r = run_validation(task, text, o->strategy, options);
     if (r.soundness_bug)
       std::cerr << "\n*** SOUNDNESS BUG: the verifier says '" << r.strategy << "' is reliable, but rollout "
                 << r.counterexample->index << " failed. Replay it with:\n***   " << r.counterexample->replay

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "experiments/counterexample_search.h"
+#include "experiments/verifier_budget.h"
 #include "models/task_error.h"
 
 namespace cmt {
@@ -41,8 +42,8 @@ std::string replay_command(const LoadedTask& task, const std::string& strategy, 
   return os.str();
 }
 
-ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& strategy_name,
-                                const ValidateOptions& options) {
+ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
+                                const std::string& strategy_name, const ValidateOptions& options) {
   const Strategy* strategy = task->task.find_strategy(strategy_name);
   if (strategy == nullptr) {
     std::string known;
@@ -64,10 +65,22 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
   r.strategy = strategy->name;
   r.options = options;
   r.options.threads = std::max(1, options.threads);
+  r.verifier = make_verifier_model(task_yaml, task, options.form);
 
   auto start = std::chrono::steady_clock::now();
-  r.prediction = verify_strategy(*task, *strategy);
-  r.verify_seconds = seconds_since(start);
+  const bool timed_out = options.verifier_timed_out_after > 0;
+  if (timed_out) {
+    std::ostringstream why;
+    why << kVerifierTimedOut << " after " << options.verifier_timed_out_after
+        << " s (no prediction: the motion ends are not scored)";
+    r.prediction.failure = why.str();
+    r.verify_seconds = options.verifier_timed_out_after;
+  } else {
+    // The widened task has the same strategies and C-space; only its uncertainty differs.
+    r.prediction = verify_strategy(*r.verifier.task, *r.verifier.task->task.find_strategy(strategy_name));
+    r.verify_seconds = seconds_since(start);
+  }
+  if (options.after_verify) options.after_verify();
 
   start = std::chrono::steady_clock::now();
   SimOptions sim;
@@ -93,7 +106,7 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
     cx.outcome = *failed;
     r.counterexample = cx;
     r.soundness_bug = r.prediction.reliable;
-  } else if (!r.prediction.reliable && options.counterexample_budget > 0) {
+  } else if (!r.prediction.reliable && !timed_out && options.counterexample_budget > 0) {
     start = std::chrono::steady_clock::now();
     SearchResult s =
         search_counterexample(task, *strategy, r.options, r.prediction, r.rollouts, r.contact_tolerance);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "controllers/controller.h"
 #include "controllers/error_model.h"
 #include "experiments/sticking_check.h"
+#include "experiments/verifier_model.h"
 #include "models/loaded_task.h"
 #include "sim/rollout.h"
 #include "verifier/verify.h"
@@ -44,12 +46,20 @@ struct ValidateOptions {
   std::uint64_t seed = 1;  // master seed: rollout i uses rollout_stream(seed, i)
   int threads = 1;         // results are identical for every thread count
   SampleMode mode = SampleMode::kUniform;
-  ControllerForm form = ControllerForm::kAdmittance;
+  // Impedance by default: no sensed force enters its command, so its velocity error is exactly what the
+  // verifier models (theta_v). The admittance form is verified with a widened theta_v (verifier_model.h).
+  ControllerForm form = ControllerForm::kImpedance;
   // Counterexample search when the verifier says unreliable and no rollout failed: at most this many extra
   // rollouts (extreme-mode errors, start-region vertices, then a local search around the closest miss).
   int counterexample_budget = 400;
   // Per-atom stick/slide agreement table (experiments/sticking_check.h): trials, 0 = skip.
   int sticking_trials = 0;
+  // > 0: the verifier ran out of this wall-clock budget (s) elsewhere (experiments/verifier_budget.h): it
+  // is not run; the prediction is empty and unreliable with failure "verifier: timed out after B s", every
+  // end counts as unpredicted and no counterexample search runs.
+  double verifier_timed_out_after = 0;
+  // Called once the verifier has finished, before the rollouts (the verifier budget's phase signal).
+  std::function<void()> after_verify;
 };
 
 // One observed motion end (every motion of every rollout, not only the last).
@@ -100,6 +110,7 @@ struct SearchReport {
 struct ValidationResult {
   std::string task, strategy;
   ValidateOptions options;
+  VerifierModel verifier;  // the bound the verifier used for options.form and why (its task may be widened)
   VerifyResult prediction;
   std::vector<RolloutOutcome> rollouts;
   std::vector<ObservedEnd> ends;  // every terminated motion end of every stable rollout, rollout-major
@@ -150,10 +161,12 @@ bool contradicts_verifier(const ValidationResult& result);
 std::string replay_command(const LoadedTask& task, const std::string& strategy, std::uint64_t seed, int index,
                            SampleMode mode, ControllerForm form);
 
-// Runs the verifier and the rollouts (and the search and the sticking table). Throws TaskError for an
-// unknown strategy.
-ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& strategy,
-                                const ValidateOptions& options);
+// Runs the verifier and the rollouts (and the search and the sticking table). `task_yaml` is the text `task`
+// was loaded from: the verifier runs on make_verifier_model(task_yaml, task, options.form).task (theta_v
+// widened for the admittance form), the rollouts on `task`. Throws TaskError for an unknown strategy or a
+// widened theta_v the task format refuses.
+ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
+                                const std::string& strategy, const ValidateOptions& options);
 
 // The `cmt validate --json` object: the contracts.md fields (reliable, rollouts, successes, outside,
 // soundness, coverage) and the rest of the result (prediction as verify_json, worst offenders, the

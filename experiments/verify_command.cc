@@ -58,6 +58,8 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                      {"fixpoint_steps", s.fixpoint_steps},
                      {"reached_area", s.reached_area}});
     if (with_reached && s.reached) steps.back()["reached"] = pieces_json(lt, s.reached->pieces());
+    // The part of `termination` due to the motion's termination sets (Buckley §4.5), when it has any.
+    if (s.sensing) steps.back()["sensing_termination"] = pieces_json(lt, s.sensing->pieces());
   }
   nlohmann::json out = {
       {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};

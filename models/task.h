@@ -51,13 +51,32 @@ struct Region {
   std::string key;
 };
 
+// A circular cone of sensed reaction-force directions: the force the environment applies to the robot (it
+// points into free space, e.g. +z on a floor). `direction` is unit length after loading; 0 < angle <= pi/2.
+struct ForceCone {
+  Vec3 direction = Vec3::UnitZ();
+  double angle = 0;
+};
+
+// Buckley §3.1.2 termination parameters of a motion (docs/task-format.md "terminate"): P_s, a union of axis
+// boxes of sensed positions, and F_s, a union of cones of sensed force directions. Sticking (type 1) always
+// applies; with P_s alone the motion also stops when in contact with the sensed position in P_s (type 2);
+// with F_s when the sensed force direction is in F_s and, if P_s is given too, the sensed position in P_s
+// (type 3). Empty lists: the condition is not given.
+struct MotionTermination {
+  std::vector<AxisBox> position;  // P_s, in configuration space (task units)
+  std::vector<ForceCone> force;   // F_s
+  bool any() const { return !position.empty() || !force.empty(); }
+};
+
 // Buckley §3.2-3.3: the generalized damper (commanded velocity direction, unit length after loading) and the
 // generalized spring (commanded position in configuration space).
 struct Motion {
   enum class Kind { kDamper, kSpring };
   std::string name;
   Kind kind = Kind::kDamper;
-  Vec3 target = Vec3::Zero();  // damper: unit velocity direction; spring: commanded position
+  Vec3 target = Vec3::Zero();   // damper: unit velocity direction; spring: commanded position
+  MotionTermination terminate;  // optional sensing termination (types 2 and 3)
 };
 
 // A decision-free sequence of motions (contracts.md). Conditional strategies extend this later (Buckley

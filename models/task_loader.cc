@@ -315,6 +315,45 @@ class Parser {
     }
   }
 
+  // Buckley §3.1.2 termination parameters: `position` (P_s) and `force` (F_s), each one item or a non-empty
+  // list of items (their union).
+  MotionTermination parse_termination(const Node& n) const {
+    n.require_map({"position", "force"});
+    // Present keys, null values included (a null is then reported as a bad value, not silently dropped).
+    const auto child = [&](const char* key) { return Node(n.raw()[key], n.child_path(key), &file_); };
+    const bool position = n.raw()["position"].IsDefined(), force = n.raw()["force"].IsDefined();
+    if (!position && !force)
+      n.fail("give position (a box of sensed positions), force (a cone of sensed force directions) or both");
+    MotionTermination t;
+    if (position)
+      for_each_item(child("position"), [&](const Node& item) {
+        item.require_map({"box"});
+        t.position.push_back(parse_box(item.at("box"), {"min", "max"}));
+      });
+    if (force)
+      for_each_item(child("force"), [&](const Node& item) {
+        item.require_map({"direction", "angle"});
+        ForceCone c;
+        c.direction = parse_vector(item.at("direction"));
+        if (c.direction.norm() == 0) item.at("direction").fail("the force direction is the zero vector");
+        c.direction.normalize();
+        c.angle = item.at("angle").number();
+        // A circular cone wider than a half-space is not convex (models/friction_cone.h CircularCone); a zero
+        // angle is a single direction, which no sensed force matches in practice.
+        if (!(c.angle > 0) || c.angle > std::numbers::pi / 2)
+          item.at("angle").fail("must be in (0, pi/2] (1.5708) radians, got " + format(c.angle));
+        t.force.push_back(c);
+      });
+    return t;
+  }
+  // A mapping is one item; a list must be non-empty and holds items.
+  template <typename F>
+  static void for_each_item(const Node& n, F&& f) {
+    if (!n.is_sequence()) return f(n);
+    if (n.size() == 0) n.fail("the list is empty");
+    for (std::size_t i = 0; i < n.size(); ++i) f(n.item(i));
+  }
+
   void parse_motions(const Node& n, Task& task) const {
     if (!n.is_map()) n.fail("expected a mapping of motion names");
     std::set<std::string> names;
@@ -322,8 +361,9 @@ class Parser {
       const std::string name = kv.first.as<std::string>();
       const Node m(kv.second, n.child_path(name), &file_);
       if (!names.insert(name).second) m.fail("duplicated motion name");
-      m.require_map({"spring", "damper"});
-      if (m.size() != 1) m.fail("a motion is exactly one of spring, damper");
+      m.require_map({"spring", "damper", "terminate"});
+      const auto defined = [&](const char* key) { return m.is_map() && m.raw()[key].IsDefined(); };
+      if (defined("spring") == defined("damper")) m.fail("a motion is exactly one of spring, damper");
       Motion motion;
       motion.name = name;
       if (m.has("spring")) {
@@ -336,6 +376,8 @@ class Parser {
           m.at("damper").fail("the commanded velocity direction is the zero vector");
         motion.target.normalize();
       }
+      if (defined("terminate"))
+        motion.terminate = parse_termination(Node(m.raw()["terminate"], m.child_path("terminate"), &file_));
       task.motions.push_back(motion);
     }
   }

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Set up, build and run the main job (README quick start, command 1): `cmt info` on every built-in task.
+# Set up, build and run the main job (README quick start, command 1): the default validation suite
+# (experiments/sweeps/default.yaml: every built-in task and strategy, the verifier against 1000 MuJoCo
+# rollouts each) into out/results.sqlite, then the report out/report/index.html. Rerunning resumes: units
+# already in the database are skipped (docs/sweeps.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 mkdir -p out
-for task in models/tasks/*.yaml; do
-  echo "== $task" >&2
-  build/bin/cmt info "$task" --json | tee "out/info_$(basename "$task" .yaml).json"
-done
-echo "Results written to out/info_*.json" >&2
+start=$(date +%s)
+build/bin/cmt sweep experiments/sweeps/default.yaml --db out/results.sqlite
+build/bin/cmt report out/results.sqlite -o out/report
+echo "Main job done in $(($(date +%s) - start)) s (sweep + report)." >&2
+echo "Report: $(pwd)/out/report/index.html" >&2

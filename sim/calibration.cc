@@ -40,7 +40,7 @@ struct Geometry {
 
 }  // namespace
 
-CalibrationResult calibrate_friction(std::vector<ControllerForm> forms) {
+CalibrationResult calibrate_friction(std::vector<ControllerForm> forms, const MjcfOptions& scene) {
   const auto wall_start = std::chrono::steady_clock::now();
   CalibrationResult result;
   const Vec3 tangent = Vec3::UnitY();
@@ -49,6 +49,7 @@ CalibrationResult calibrate_friction(std::vector<ControllerForm> forms) {
       {"edge", Vec3(-2, 0, 0), {-Vec3::UnitZ(), -Vec3::UnitX()}},
   };
   SimOptions base;
+  base.scene = scene;
   const double lambda = base.spring_rate;
   const double distance = kCalibrationSpeed / lambda;  // spring: |x_c - x| giving the calibration speed
   for (const double mu : kCalibrationFrictions) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "controllers/controller.h"
+#include "sim/rollout.h"
 
 namespace cmt {
 
@@ -77,10 +78,12 @@ struct CalibrationResult {
   double seconds = 0;
 };
 
-// Runs every case (about 300; a few seconds). `forms` defaults to all three controller forms (the position
+// Runs every case (about 300; a few seconds) in the given MuJoCo scene (default: the rollouts' scene;
+// soft_layer_scene() is the candidate that passes the concave edge). `forms` defaults to all three controller forms (the position
 // form only for springs, and without a speed criterion: its speed is the pace of its via points).
 CalibrationResult calibrate_friction(std::vector<ControllerForm> forms = {ControllerForm::kImpedance,
                                                                           ControllerForm::kAdmittance,
-                                                                          ControllerForm::kPosition});
+                                                                          ControllerForm::kPosition},
+                                     const MjcfOptions& scene = SimOptions{}.scene);
 
 }  // namespace cmt

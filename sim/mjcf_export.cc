@@ -292,8 +292,8 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   out << "  <size nconmax=\"" << nconmax << "\" njmax=\"" << 3 * nconmax << "\"/>\n";
 
   out << "  <default>\n"
-      << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp) << " "
-      << num(options.solimp) << " 0.001\"/>\n"
+      << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp_dmin)
+      << " " << num(options.solimp_dmax) << " " << num(options.solimp_width) << "\"/>\n"
       << "    <joint type=\"slide\" damping=\"" << num(options.damping)
       << "\" stiffness=\"0\" armature=\"0\"/>\n"
       << "  </default>\n";
@@ -417,6 +417,15 @@ void write_mjcf(const LoadedTask& task, const std::filesystem::path& file, const
   stream << xml;
   stream.close();
   if (!stream) throw std::runtime_error("cannot write MJCF file '" + file.string() + "': write failed");
+}
+
+MjcfOptions soft_layer_scene() {
+  MjcfOptions o;
+  o.timestep = kSoftLayerTimestep;
+  o.solimp_dmin = kSoftLayerSolimpDmin;
+  o.solimp_dmax = kSoftLayerSolimpDmax;
+  o.solimp_width = kSoftLayerSolimpWidth;
+  return o;
 }
 
 }  // namespace cmt

@@ -153,6 +153,10 @@ void RolloutScene::init() {
   if (params_.step <= 0) params_.step = 0.01 * task_->cspace.scale();
   params_.position_gain = options_.position_gain;
   params_.via_time = options_.via_time_constants / options_.position_gain;
+  // The task's own termination sets (Buckley §3.1.2 types 2 and 3), unless the caller gave the motion's.
+  for (const Motion& m : task_->task.motions)
+    if (m.terminate.any() && !options_.terminations.count(m.name))
+      options_.terminations[m.name] = termination_spec(m.terminate);
 }
 
 double RolloutScene::timestep() const { return model_->get()->opt.timestep; }

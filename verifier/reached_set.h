@@ -61,6 +61,14 @@ class ReachedSet {
   // Only the atoms with keep[atom] true.
   ReachedSet restricted(const std::vector<bool>& keep) const;
 
+  // The part of this set inside the closed axis box (verifier/reached_set_clip.cc): face regions, segments
+  // and points exactly (the face polygon clipped by the box's six planes in the face's chart); edge intervals
+  // in doubles rounded outward by kEdgeParamSlack; vertices by a double comparison. Where the box meets a
+  // face only in a segment or a point (its plane touches the box along an edge or at a corner), that whole
+  // contact is kept when the face holds anything: an over-approximation, as callers need (sensing
+  // termination, §4.5).
+  ReachedSet within_box(const AxisBox& box) const;
+
   bool empty() const;
   bool contains_atom(int atom_id) const;
   std::vector<int> atoms() const;  // ascending ids of atoms with a non-empty part

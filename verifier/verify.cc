@@ -4,6 +4,7 @@
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
 #include "verifier/forward_projection.h"
+#include "verifier/sensing_termination.h"
 #include "verifier/spring_projection.h"
 
 namespace cmt {
@@ -40,10 +41,22 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
       step.reached_area = p.reached.area();
       step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
     }
+    if (motions[i]->terminate.any()) {
+      // §4.5: the weakly consistent reached points join the weak sticking points (Alg 4.1 step 4). A motion
+      // that can stop by sensing somewhere may terminate even where nothing sticks.
+      auto sensed =
+          std::make_shared<const ReachedSet>(sensing_termination(lt, cones, *motions[i], *step.reached));
+      step.termination.unite(*sensed);
+      step.may_not_terminate = step.may_not_terminate && sensed->empty();
+      step.sensing = std::move(sensed);
+    }
     out.steps.push_back(step);
     if (step.may_not_terminate) {
       out.failed_step = static_cast<int>(i);
-      out.failure = "motion '" + motions[i]->name + "' may never terminate: no reached atom can stick";
+      out.failure =
+          "motion '" + motions[i]->name + "' may never terminate: no reached atom can stick" +
+          (motions[i]->terminate.any() ? " and no reached point is consistent with its termination sets"
+                                       : "");
       return out;
     }
     if (step.free_termination) {

@@ -38,6 +38,9 @@ struct VerifyStep {
   double free_radius = 0;
   // Every contact point the motion may pass through (diagnostics, reports; the start included).
   std::shared_ptr<const ReachedSet> reached = nullptr;
+  // Motions with termination sets (Buckley §4.5): the reached points where sensing may stop the motion
+  // (verifier/sensing_termination.h), already united into `termination`; nullptr without termination sets.
+  std::shared_ptr<const ReachedSet> sensing = nullptr;
 };
 
 struct VerifyResult {

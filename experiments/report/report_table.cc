@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "experiments/verifier_budget.h"
+
 namespace cmt::report {
 namespace {
 
@@ -20,6 +22,8 @@ std::string percent(int part, int whole) {
 
 std::string verdict(const ConfigRow& c) {
   if (!c.prediction) return "pending";
+  // A unit whose verifier ran out of its time budget has no verdict (experiments/verifier_budget.h).
+  if (c.prediction->failure.rfind(kVerifierTimedOut, 0) == 0) return "verifier timed out";
   return c.prediction->reliable ? "reliable" : "NOT reliable";
 }
 

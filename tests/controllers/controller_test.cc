@@ -21,8 +21,8 @@ ControllerParams params() {
   return p;
 }
 
-Motion damper(const Vec3& direction) { return {"v", Motion::Kind::kDamper, direction.normalized()}; }
-Motion spring(const Vec3& target) { return {"p", Motion::Kind::kSpring, target}; }
+Motion damper(const Vec3& direction) { return {"v", Motion::Kind::kDamper, direction.normalized(), {}}; }
+Motion spring(const Vec3& target) { return {"p", Motion::Kind::kSpring, target, {}}; }
 
 Sensed sensed(double t, const Vec3& x, const Vec3& v = Vec3::Zero(), const Vec3& f = Vec3::Zero()) {
   Sensed s;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace cmt {
 namespace {
 
@@ -76,6 +78,28 @@ TEST(Termination, Type3NeedsTheForceDirection) {
   TerminationMonitor both(spec, 1.0, 0.5, kDt);
   EXPECT_FALSE(both.update(at(0, Vec3(5, 0, 0), Vec3(0, 0, 1))));
   EXPECT_EQ(both.update(at(kDt, Vec3(0, 0, 0), Vec3(0, 0, 1))), Termination::kForce);
+}
+
+TEST(Termination, SpecFromATaskMotionsSets) {
+  // Two boxes (a union) and two cones: points in either box are in P_s, nothing between them; a force within
+  // .3 rad of +z or within .1 of -x is in F_s (cone(+z, .3) holds (sin .29, 0, cos .29), not (sin .31, ...)).
+  MotionTermination t;
+  t.position = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(2, 0, 0), Vec3(3, 1, 1)}};
+  t.force = {{Vec3(0, 0, 1), 0.3}, {Vec3(-1, 0, 0), 0.1}};
+  const TerminationSpec spec = termination_spec(t);
+  ASSERT_TRUE(spec.sensed_position && spec.sensed_force);
+  EXPECT_TRUE(spec.sensed_position->contains(Vec3(0.5, 0.5, 0.5)));
+  EXPECT_TRUE(spec.sensed_position->contains(Vec3(3, 1, 1)));  // closed
+  EXPECT_FALSE(spec.sensed_position->contains(Vec3(1.5, 0.5, 0.5)));
+  EXPECT_TRUE(spec.sensed_force->contains(Vec3(std::sin(0.29), 0, std::cos(0.29))));
+  EXPECT_FALSE(spec.sensed_force->contains(Vec3(std::sin(0.31), 0, std::cos(0.31))));
+  EXPECT_TRUE(spec.sensed_force->contains(Vec3(-1, 0.05, 0)));
+  // Lists not given stay unset (sticking only).
+  const TerminationSpec none = termination_spec(MotionTermination{});
+  EXPECT_FALSE(none.sensed_position || none.sensed_force);
+  MotionTermination only_position;
+  only_position.position = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}};
+  EXPECT_FALSE(termination_spec(only_position).sensed_force.has_value());
 }
 
 TEST(Termination, NamesAreTheContractStrings) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/experiments/cmt_runner.h"
+#include "tests/verifier/sensing_tasks.h"
 
 namespace {
 
@@ -184,6 +185,40 @@ TEST(CmtVerify, HoleSpringStrategies) {
   // projection's convex-hull sliding is loose enough to call it unreliable (docs/verifier.md, Spring).
   // Pinning that output would test the looseness, not the geometry.
   EXPECT_EQ(run("verify " + task("hole") + " --strategy nope --json").status, 2);
+}
+
+// Sensing termination (docs/task-format.md "terminate", docs/verifier.md §4.5): the room of
+// tests/verifier/sensing_tasks.h. P_s = [0, 1] x [-.5, .5] x [-.5, .5] grown by eps_s = .1 meets the reached
+// floor in the rectangle [-.1, 1.1] x [-.6, .6] (area 1.44), which `verify` lists as the step's
+// sensing_termination and inside its termination (with the sticking edge x = 5); rollouts stop by "position".
+TEST(CmtVerify, SensingTerminationPiecesAndRollouts) {
+  const std::string path = testing::TempDir() + "/sensing_room.yaml";
+  std::ofstream(path) << cmt::test::sensing_room(
+      "{position: {box: {min: [0, -0.5, -0.5], max: [1, 0.5, 0.5]}}}");
+  const Result r = run("verify " + path + " --strategy s --json");
+  ASSERT_EQ(r.status, 1);  // the floor rectangle is not in the goal (the edge x = 5)
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& sensing = j["steps"][0]["sensing_termination"];
+  ASSERT_EQ(sensing.size(), 1u);
+  EXPECT_EQ(sensing[0]["kind"], "face");
+  EXPECT_NEAR(sensing[0]["area"].get<double>(), 1.44, 1e-6);
+  bool floor_piece = false, edge_piece = false;
+  for (const auto& piece : j["steps"][0]["termination"]) {
+    if (piece["kind"] == "face") floor_piece = std::abs(piece["area"].get<double>() - 1.44) < 1e-6;
+    if (piece["kind"] == "edge") edge_piece = true;
+  }
+  EXPECT_TRUE(floor_piece);
+  EXPECT_TRUE(edge_piece);
+
+  const Result ro = run("rollout " + path + " --strategy s -n 2 --seed 1 --threads 1 --json");
+  ASSERT_EQ(ro.status, 1);  // no rollout ends in the goal
+  for (const auto& o : nlohmann::json::parse(ro.out)["outcomes"]) EXPECT_EQ(o["termination"], "position");
+
+  // A termination set without a sensible cone: exit 2, naming the key.
+  std::ofstream(path) << cmt::test::sensing_room("{force: {direction: [0, 0, 1], angle: 2}}");
+  const Result bad = run("verify " + path + " --strategy s --json");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(bad.out)["error"]["key"], "motions.m.terminate.force.angle");
 }
 
 }  // namespace

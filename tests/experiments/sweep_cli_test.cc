@@ -176,6 +176,53 @@ TEST_F(SweepCli, MpirunTwoRanksResumeAndMergeIntoOneDatabase) {
   EXPECT_EQ(test::rollout_results(path("mpi.sqlite")), test::rollout_results(path("one.sqlite")));
 }
 
+// The verifier time budget (docs/sweeps.md): a budget the verifier meets changes no result (the unit runs
+// in a child process and its rows come back bit for bit); one it cannot meet (1 ms: loading the task alone
+// takes longer) records "verifier: timed out" with the same rollouts, unscored.
+TEST_F(SweepCli, VerifierBudgetTimesOutIntoAResultRow) {
+  const auto results = [](const std::string& db) {
+    return test::query_rows(
+        db,
+        "SELECT c.task, c.strategy, p.reliable, p.failure, p.verifier_theta_v, m.rollouts, "
+        "m.successes, m.unstable, m.ends, m.outside, m.soundness, m.coverage, "
+        "m.coverage_radius, m.soundness_bug, m.counterexample FROM configs c JOIN "
+        "predictions p USING (config_id) JOIN metrics m USING (config_id) ORDER BY "
+        "c.unit_index");
+  };
+  const auto ends = [](const std::string& db, const std::string& scored) {
+    return test::query_rows(
+        db, "SELECT c.strategy, r.rollout, r.motion, r.end_x, r.end_y, r.end_z, r.atom, " + scored +
+                " r.termination, r.success FROM rollouts r JOIN configs c USING "
+                "(config_id) ORDER BY c.unit_index, r.rollout, r.motion");
+  };
+  const std::string plain = test::write_file(dir_ / "plain.yaml", two_unit_spec()).string();
+  const std::string roomy =
+      test::write_file(dir_ / "roomy.yaml", "verify_budget_seconds: 600\n" + two_unit_spec()).string();
+  const std::string tight =
+      test::write_file(dir_ / "tight.yaml", "verify_budget_seconds: 0.001\n" + two_unit_spec()).string();
+  run_json("sweep " + plain + " --db " + path("plain.sqlite") + " --threads 2", 0);
+  run_json("sweep " + roomy + " --db " + path("roomy.sqlite") + " --threads 2", 0);
+  run_json("sweep " + tight + " --db " + path("tight.sqlite") + " --threads 2", 0);
+  EXPECT_EQ(results(path("roomy.sqlite")), results(path("plain.sqlite")));
+  EXPECT_EQ(ends(path("roomy.sqlite"), "r.inside, r.distance,"),
+            ends(path("plain.sqlite"), "r.inside, r.distance,"));
+
+  EXPECT_EQ(query_count(path("tight.sqlite"), "SELECT count(*) FROM configs WHERE status = 'done'"), 2);
+  EXPECT_EQ(query_count(path("tight.sqlite"),
+                        "SELECT count(*) FROM predictions WHERE reliable = 0 AND failure LIKE "
+                        "'verifier: timed out after 0.001 s%'"),
+            2);
+  // Every end unscored (no prediction), no counterexample search; the rollouts are the same physics.
+  EXPECT_EQ(query_count(path("tight.sqlite"), "SELECT sum(ends) + sum(outside) FROM metrics"), 0);
+  EXPECT_EQ(query_count(path("tight.sqlite"), "SELECT count(*) FROM rollouts WHERE inside IS NOT NULL"), 0);
+  EXPECT_EQ(query_count(path("tight.sqlite"), "SELECT sum(rollouts) FROM metrics"), 20);
+  EXPECT_EQ(ends(path("tight.sqlite"), ""), ends(path("plain.sqlite"), ""));
+  // A budget of 0 or less is refused (leave the key out for no limit).
+  const std::string zero =
+      test::write_file(dir_ / "zero.yaml", "verify_budget_seconds: 0\n" + two_unit_spec()).string();
+  run_json("sweep " + zero + " --db " + path("zero.sqlite"), 2);
+}
+
 TEST_F(SweepCli, ExportCsvWritesEveryTable) {
   const std::string spec = test::write_file(dir_ / "spec.yaml", "n: 5\nseeds: [3]\ntasks:\n  - file: " +
                                                                     test::source_task("two_blocks") +
@@ -194,9 +241,13 @@ TEST_F(SweepCli, ExportCsvWritesEveryTable) {
   std::string header, row;
   std::getline(summary, header);
   std::getline(summary, row);
-  EXPECT_EQ(header.rfind("config_id,unit_key,task,strategy,n,seed,mode,sticking_trials,reliable,", 0), 0u)
+  EXPECT_EQ(header.rfind("config_id,unit_key,task,strategy,n,seed,mode,controller,sticking_trials,reliable,"
+                         "failure,verifier_theta_v,",
+                         0),
+            0u)
       << header;
-  EXPECT_NE(row.find(",two_blocks,slide,5,3,uniform,0,1,"), std::string::npos) << row;  // slide is reliable
+  // slide is reliable; the impedance form (the default) is verified with the task's theta_v .25
+  EXPECT_NE(row.find(",two_blocks,slide,5,3,uniform,impedance,0,1,,0.25,"), std::string::npos) << row;
   run_json("export-csv " + path("missing.sqlite") + " -o " + path("csv2"), 2);
 }
 

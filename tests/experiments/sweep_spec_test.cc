@@ -52,6 +52,11 @@ TEST(SweepSpec, StructuralErrorsNameFileKeyAndReason) {
   expect_error(two_blocks_spec("", "n: 10\nseeds: [1, -4]\n"), "seeds[1]", "must be in [0, ");
   expect_error(two_blocks_spec("", "n: 10\nseeds: [3, 3]\n"), "seeds[1]", "duplicated seed 3");
   expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\nmode: random\n"), "mode", "uniform or extreme");
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\ncontroller: pid\n"), "controller",
+               "must be impedance, admittance or position, got 'pid'");
+  // two_blocks' strategies are dampers: the position form (springs only) is refused before anything runs.
+  expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\ncontroller: position\n"), "tasks[0].strategies[0]",
+               "the damper motion 'v1'");
   expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\nsticking_trials: -1\n"), "sticking_trials",
                "must be in [0, ");
   expect_error("n: 10\nseeds: [1]\ntasks: [\n", "line 4, column 1", "malformed YAML");
@@ -100,6 +105,20 @@ TEST(SweepSpec, OverridesThatBreakTheTaskNameTheSpecKey) {
       "tasks[0].random.ranges.friction", "also in the grid");
 }
 
+TEST(SweepSpec, ControllerFormIsAUnitField) {
+  const auto impedance = expand_units(parse(two_blocks_spec("")));
+  const auto admittance =
+      expand_units(parse(two_blocks_spec("", "n: 10\nseeds: [1]\ncontroller: admittance\n")));
+  ASSERT_EQ(impedance.size(), 2u);
+  ASSERT_EQ(admittance.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(impedance[i].controller, ControllerForm::kImpedance);
+    EXPECT_EQ(admittance[i].controller, ControllerForm::kAdmittance);
+    EXPECT_EQ(admittance[i].task_yaml, impedance[i].task_yaml);  // the widening is the verifier's business
+    EXPECT_NE(admittance[i].unit_key, impedance[i].unit_key);    // different physics: different results
+  }
+}
+
 TEST(SweepSpec, GridExpandsInDocumentedOrder) {
   const SweepSpec spec =
       parse(two_blocks_spec("    grid:\n      friction: [0.2, 0.3]\n      theta_v: [0.1, 0.2, 0.24]\n",
@@ -122,6 +141,7 @@ TEST(SweepSpec, GridExpandsInDocumentedOrder) {
     EXPECT_EQ(units[i].task, "two_blocks");
     EXPECT_EQ(units[i].n, 25);
     EXPECT_EQ(units[i].mode, SampleMode::kExtreme);
+    EXPECT_EQ(units[i].controller, ControllerForm::kImpedance);  // the default
     EXPECT_EQ(units[i].sticking_trials, 5);
     EXPECT_EQ(units[i].unit_key.size(), 32u);
     keys.insert(units[i].unit_key);
@@ -215,13 +235,16 @@ TEST(SweepSpec, UnitKeyIgnoresCommentsButNotValues) {
   EXPECT_EQ(duplicates, 1);
   const std::string key = units[0].unit_key;
   const std::string yaml = units[0].task_yaml;
-  EXPECT_NE(make_unit_key(yaml, "down", 10, 2, SampleMode::kUniform, 0, 400), key);
-  EXPECT_NE(make_unit_key(yaml, "down", 11, 1, SampleMode::kUniform, 0, 400), key);
-  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kExtreme, 0, 400), key);
-  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 1, 400), key);
-  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 0, 399), key);
-  EXPECT_NE(make_unit_key(yaml, "slide", 10, 1, SampleMode::kUniform, 0, 400), key);
-  EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, 0, 400), key);
+  constexpr auto kImp = ControllerForm::kImpedance;  // the spec's default
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 2, SampleMode::kUniform, kImp, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 11, 1, SampleMode::kUniform, kImp, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kExtreme, kImp, 0, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, ControllerForm::kAdmittance, 0, 400),
+            key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 1, 400), key);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 399), key);
+  EXPECT_NE(make_unit_key(yaml, "slide", 10, 1, SampleMode::kUniform, kImp, 0, 400), key);
+  EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400), key);
   std::filesystem::remove_all(dir);
 }
 

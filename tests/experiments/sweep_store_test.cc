@@ -32,6 +32,8 @@ UnitRecord fake_record(const SweepUnit& u, int /*threads*/) {
   r.failure = r.reliable ? "" : "ends \"outside\", e.g.\nthe floor";
   r.verify_seconds = 0.5;
   r.verify_json = R"({"reliable": false})";
+  r.verifier_theta_v = 0.25;  // the impedance form: the task's theta_v
+  r.verifier_model = R"({"controller": "impedance", "theta_v": 0.25})";
   for (int i = 0; i < u.n; ++i) {
     RolloutRow row;
     row.rollout = i;
@@ -79,7 +81,8 @@ TEST_F(SweepStore, SchemaHasTheInterfaceColumns) {
       {"runs", "run_id,spec_path,spec_text,created"},
       {"configs",
        "config_id,run_id,unit_key,task,task_file,task_yaml,strategy,params,n,seed,mode,status,finished"},
-      {"predictions", "config_id,reliable,failure,verify_seconds,verify_json"},
+      {"predictions",
+       "config_id,reliable,failure,verify_seconds,verify_json,verifier_theta_v,verifier_model"},
       {"rollouts",
        "config_id,rollout,motion,start_x,start_y,start_z,end_x,end_y,end_z,atom,termination,inside,distance,"
        "success,"
@@ -247,18 +250,19 @@ TEST_F(SweepStore, CsvExport) {
             3u);  // header and 2 rows (records end in CRLF; the quoted failure text has an LF)
   EXPECT_EQ(
       summary[0],
-      "config_id,unit_key,task,strategy,n,seed,mode,sticking_trials,friction,reliable,failure,rollouts,"
+      "config_id,unit_key,task,strategy,n,seed,mode,controller,sticking_trials,friction,reliable,failure,"
+      "verifier_theta_v,rollouts,"
       "successes,unstable,ends,outside,soundness,coverage,coverage_radius,contact_tolerance,soundness_bug,"
       "has_counterexample,verify_seconds,rollout_seconds");
   // Unit 0: down, friction 0.2, seed 1: the fake's values (coverage 1/(1+0) = 1).
   EXPECT_EQ(summary[1], "1," + units[0].unit_key +
-                            ",two_blocks,down,6,1,uniform,0,0.2,0,\"ends \"\"outside\"\", e.g.\nthe floor\","
-                            "6,3,0,6,3,0.5,1.0,0.1,0.001,0,1,0.5,0.25");
+                            ",two_blocks,down,6,1,uniform,impedance,0,0.2,0,\"ends \"\"outside\"\", "
+                            "e.g.\nthe floor\",0.25,6,3,0,6,3,0.5,1.0,0.1,0.001,0,1,0.5,0.25");
   // Unit 2: slide, reliable, no failure text (empty field), coverage 1/3 in shortest round-trip form.
   EXPECT_EQ(summary[2],
             "3," + units[2].unit_key +
-                ",two_blocks,slide,6,1,uniform,0,0.2,1,,6,3,0,6,3,0.5,0.3333333333333333,0.1,0.001,0,0,"
-                "0.5,0.25");
+                ",two_blocks,slide,6,1,uniform,impedance,0,0.2,1,,0.25,6,3,0,6,3,0.5,0.3333333333333333,0.1,"
+                "0.001,0,0,0.5,0.25");
 
   const auto rollouts = lines(dir_ / "csv" / "rollouts.csv");
   ASSERT_EQ(rollouts.size(), 1u + 12);

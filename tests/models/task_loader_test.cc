@@ -137,6 +137,94 @@ TEST(TaskLoader, BadName) {
 
 TEST(TaskLoader, MissingFile) { EXPECT_THROW(load_task("/nonexistent/task.yaml"), TaskError); }
 
+// Termination sets (docs/task-format.md "terminate"; Buckley §3.1.2 types 2 and 3).
+const std::string kP1 = "p1: {spring: [0, 0, -2.4]}";
+
+TEST(TaskLoader, ReadsTerminationSets) {
+  const std::string y = replace(test::kHoleYaml, kP1,
+                                "p1:\n    spring: [0, 0, -2.4]\n    terminate:\n"
+                                "      position: {box: {min: [-1, -1, -2.1], max: [1, 1, -1.9]}}\n"
+                                "      force: {direction: [0, 0, 2], angle: 0.3}");
+  auto lt = load_task_from_string(y, "t.yaml");
+  const MotionTermination& t = lt->task.find_motion("p1")->terminate;
+  ASSERT_EQ(t.position.size(), 1u);
+  EXPECT_EQ(t.position[0].min, Vec3(-1, -1, -2.1));
+  EXPECT_EQ(t.position[0].max, Vec3(1, 1, -1.9));
+  ASSERT_EQ(t.force.size(), 1u);
+  EXPECT_EQ(t.force[0].direction, Vec3(0, 0, 1));  // normalized
+  EXPECT_DOUBLE_EQ(t.force[0].angle, 0.3);
+  EXPECT_TRUE(t.any());
+  EXPECT_FALSE(lt->task.find_motion("p2")->terminate.any());  // not given: sticking only
+}
+
+TEST(TaskLoader, TerminationSetsMayBeLists) {
+  const std::string y = replace(test::kHoleYaml, kP1,
+                                "p1:\n    spring: [0, 0, -2.4]\n    terminate:\n      position:\n"
+                                "        - box: {min: [-1, -1, -2.1], max: [1, 1, -1.9]}\n"
+                                "        - box: {min: [2, -1, -0.1], max: [3, 1, 0.1]}\n      force:\n"
+                                "        - {direction: [0, 0, 1], angle: 0.3}\n"
+                                "        - {direction: [1, 0, 0], angle: 1.5707963267948966}");
+  auto lt = load_task_from_string(y, "t.yaml");
+  const MotionTermination& t = lt->task.find_motion("p1")->terminate;
+  EXPECT_EQ(t.position.size(), 2u);
+  EXPECT_EQ(t.force.size(), 2u);
+}
+
+TEST(TaskLoader, PlanarTerminationBoxSpansTheClipSlab) {
+  // In 2-D the box is [x, z]; its y range is the planar clip slab, like `bounds` (task_loader.h).
+  const std::string planar = R"(
+name: planar_t
+dimension: 2
+friction: 0.25
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.25, theta_f: 0.1}
+cspace: []
+bounds: {min: [-4, 0], max: [4, 3]}
+start: {point: [-2, 0]}
+goal: {point: [2, 0]}
+motions:
+  v1: {damper: [1, -0.2], terminate: {position: {box: {min: [1, -1], max: [3, 1]}}, force: {direction: [0, 1], angle: 0.5}}}
+)";
+  auto lt = load_task_from_string(planar, "planar.yaml");
+  const MotionTermination& t = lt->task.find_motion("v1")->terminate;
+  ASSERT_EQ(t.position.size(), 1u);
+  EXPECT_EQ(t.position[0].min, Vec3(1, -kPlanarClipHalfDepth, -1));
+  EXPECT_EQ(t.position[0].max, Vec3(3, kPlanarClipHalfDepth, 1));
+  EXPECT_EQ(t.force.at(0).direction, Vec3(0, 0, 1));
+}
+
+TEST(TaskLoader, BadTerminationSets) {
+  const auto with = [](const std::string& terminate) {
+    return replace(test::kHoleYaml, kP1, "p1: {spring: [0, 0, -2.4], terminate: " + terminate + "}");
+  };
+  expect_error(with("{positon: {box: {min: [0, 0, 0], max: [1, 1, 1]}}}"), "motions.p1.terminate.positon",
+               "unknown key (allowed here: force, position)");
+  expect_error(with("{}"), "motions.p1.terminate", "give position");
+  expect_error(with("{position: {box: {min: [0, 0, 0], max: [1, 0, 1]}}}"),
+               "motions.p1.terminate.position.box", "degenerate box: min y = 0 must be < max y = 0");
+  expect_error(with("{position: {sphere: 1}}"), "motions.p1.terminate.position.sphere", "unknown key");
+  expect_error(with("{position: []}"), "motions.p1.terminate.position", "the list is empty");
+  expect_error(
+      with("{position: [{box: {min: [0, 0, 0], max: [1, 1, 1]}}, {box: {min: [0, 0], max: [1, 1]}}]}"),
+      "motions.p1.terminate.position[1].box.min", "expected 3 numbers");
+  expect_error(with("{force: {direction: [0, 0, 1], angle: 0}}"), "motions.p1.terminate.force.angle",
+               "must be in (0, pi/2]");
+  expect_error(with("{force: {direction: [0, 0, 1], angle: 1.6}}"), "motions.p1.terminate.force.angle",
+               "must be in (0, pi/2]");
+  expect_error(with("{force: {direction: [0, 0, 1], angle: -0.1}}"), "motions.p1.terminate.force.angle",
+               "must be in (0, pi/2]");
+  expect_error(with("{force: {direction: [0, 0, 0], angle: 0.2}}"), "motions.p1.terminate.force.direction",
+               "zero vector");
+  expect_error(with("{force: {direction: [0, 0, 1]}}"), "motions.p1.terminate.force.angle",
+               "missing required key");
+  expect_error(with("{force: {direction: [0, 0, 1], angle: 0.2, axis: 1}}"),
+               "motions.p1.terminate.force.axis", "unknown key");
+  expect_error(with("null"), "motions.p1.terminate", "expected a mapping");
+  expect_error(replace(test::kHoleYaml, kP1, "p1: {terminate: {force: {direction: [0, 0, 1], angle: 0.2}}}"),
+               "motions.p1", "exactly one of spring, damper");
+  expect_error(replace(test::kHoleYaml, kP1, "p1: {spring: [0, 0, -2.4], damper: [0, 0, 1]}"), "motions.p1",
+               "exactly one of spring, damper");
+}
+
 TEST(TaskLoader, PlanarTask) {
   const std::string planar = R"(
 name: planar_step

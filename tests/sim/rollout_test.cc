@@ -170,7 +170,7 @@ TEST(Rollout, SeamsDoNotSwallowTheRobot) {
   const auto scene = RolloutScene::build(hole);
   RolloutRunner runner(scene);
   for (const double x : {-1.0, 1.0}) {
-    const Motion down{"down", Motion::Kind::kDamper, Vec3(0, 0, -1)};
+    const Motion down{"down", Motion::Kind::kDamper, Vec3(0, 0, -1), {}};
     double lowest = 0;
     runner.drive(Vec3(x, -3, 0), down, 0.5,
                  [&](const StepState& s) { lowest = std::min(lowest, s.position.z()); });
@@ -224,7 +224,7 @@ TEST(Rollout, RobotIsGravityCompensated) {
   const auto heavy = RolloutScene::build(hole, model, options);
   EXPECT_EQ(heavy->model()->get()->opt.gravity[2], -9.81);
   RolloutRunner runner(heavy);
-  const Motion sideways{"sideways", Motion::Kind::kDamper, Vec3(1, 0, 0)};
+  const Motion sideways{"sideways", Motion::Kind::kDamper, Vec3(1, 0, 0), {}};
   double lowest = 2, highest = 2;
   runner.drive(Vec3(-2, 0, 2), sideways, 0.5, [&](const StepState& s) {
     lowest = std::min(lowest, s.position.z());

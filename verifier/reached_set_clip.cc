@@ -1,0 +1,117 @@
+// ReachedSet::within_box (verifier/reached_set.h): the part of a set of contact points inside an axis box,
+// used for Buckley's weakly consistent positions (§4.5, Def 4.1) of a motion's position set P_s.
+#include <algorithm>
+#include <array>
+
+#include "verifier/internal/face_regions.h"
+#include "verifier/reached_set.h"
+
+namespace cmt {
+
+using fp::FT;
+using fp::Point2;
+using fp::Points2;
+using fp::PolygonSet2;
+
+namespace {
+
+// The six closed half-spaces of the box, each as a plane whose positive side is the box's side:
+// x_k - min_k >= 0 and max_k - x_k >= 0 (exact planes through the double bounds).
+std::array<fp::Plane3, 6> box_planes(const AxisBox& box) {
+  std::array<fp::Plane3, 6> out;
+  for (int k = 0; k < 3; ++k) {
+    const FT e[3] = {k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0};
+    out[2 * k] = fp::Plane3(e[0], e[1], e[2], -FT(box.min[k]));
+    out[2 * k + 1] = fp::Plane3(-e[0], -e[1], -e[2], FT(box.max[k]));
+  }
+  return out;
+}
+
+// Parameters of segment a + t (b - a), t in [0, 1], inside the box; false when empty. Floating point: the
+// caller rounds the result outward.
+bool box_interval(const AxisBox& box, const Vec3& a, const Vec3& b, double* t0, double* t1) {
+  double lo = 0, hi = 1;
+  for (int k = 0; k < 3; ++k) {
+    const double d = b[k] - a[k];
+    if (d == 0) {
+      if (a[k] < box.min[k] || a[k] > box.max[k]) return false;
+      continue;
+    }
+    double ta = (box.min[k] - a[k]) / d, tb = (box.max[k] - a[k]) / d;
+    if (ta > tb) std::swap(ta, tb);
+    lo = std::max(lo, ta);
+    hi = std::min(hi, tb);
+  }
+  if (lo > hi) return false;
+  *t0 = lo;
+  *t1 = hi;
+  return true;
+}
+
+bool in_box(const AxisBox& box, const Vec3& p) {
+  for (int k = 0; k < 3; ++k)
+    if (p[k] < box.min[k] || p[k] > box.max[k]) return false;
+  return true;
+}
+
+}  // namespace
+
+ReachedSet ReachedSet::within_box(const AxisBox& box) const {
+  const CSpace& c = cspace();
+  ReachedSet out(c);
+  Impl& o = *out.impl_;
+  const Impl& in = *impl_;
+  const std::array<fp::Plane3, 6> planes = box_planes(box);
+
+  for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
+    const fp::FaceSet& fs = in.faces[fi];
+    if (fs.empty()) continue;
+    const fp::FaceChart& chart = in.charts[fi];
+    // face ∩ box in the chart: the convex face polygon clipped by the box's half-spaces restricted to the
+    // face's plane (exact).
+    Points2 window = in.face_polygon[fi];
+    for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, chart));
+    if (window.empty()) continue;
+    const int f = static_cast<int>(fi);
+    if (window.size() >= 3) {
+      if (!fs.region.is_empty()) {
+        PolygonSet2 part = fs.region;
+        part.intersection(fp::to_polygon(window));
+        if (!part.is_empty()) o.add_region(f, part, nullptr);
+      }
+    } else if (!fs.region.is_empty()) {
+      // A lower-dimensional window (the plane touches the box): keep all of it (over-approximation).
+      if (window.size() == 2)
+        o.add_segment(f, window[0], window[1]);
+      else
+        o.add_point(f, window[0]);
+    }
+    for (const fp::Segment2& s : fs.segments) {
+      FT t0, t1;
+      if (fp::clip_segment(window, s.source(), s.target(), &t0, &t1))
+        o.add_segment(f, s.source() + (s.target() - s.source()) * t0,
+                      s.source() + (s.target() - s.source()) * t1);
+    }
+    for (const Point2& p : fs.points)
+      if (fp::inside_closed(window, p)) o.add_point(f, p);
+  }
+
+  for (std::size_t ei = 0; ei < in.edges.size(); ++ei) {
+    if (in.edges[ei].empty()) continue;
+    const Edge& e = c.edges()[ei];
+    double b0 = 0, b1 = 0;
+    if (!box_interval(box, e.a, e.b, &b0, &b1)) continue;
+    b0 = std::max(0.0, b0 - kEdgeParamSlack);
+    b1 = std::min(1.0, b1 + kEdgeParamSlack);
+    for (const EdgeInterval& iv : in.edges[ei]) {
+      const double t0 = std::max(iv.t0, b0), t1 = std::min(iv.t1, b1);
+      if (t0 <= t1) o.add_interval(static_cast<int>(ei), t0, t1, nullptr);
+    }
+  }
+
+  for (std::size_t vi = 0; vi < in.vertices.size(); ++vi)
+    if (in.vertices[vi] && in_box(box, c.vertices()[vi].point)) o.add_vertex(static_cast<int>(vi));
+  return out;
+}
+
+}  // namespace cmt
