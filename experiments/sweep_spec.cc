@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "controllers/random.h"
+#include "models/yaml_node.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
 
@@ -16,100 +17,7 @@ namespace cmt {
 
 namespace {
 
-// A spec YAML node with its key path (the task loader's error style: file, key path, reason).
-class SpecNode {
- public:
-  SpecNode(YAML::Node node, std::string path, const std::string* file)
-      : node_(node), path_(std::move(path)), file_(file) {}
-
-  [[noreturn]] void fail(const std::string& reason) const { throw TaskError(*file_, path_, reason); }
-  const std::string& path() const { return path_; }
-  const YAML::Node& raw() const { return node_; }
-
-  void require_map(const std::vector<std::string>& allowed) const {
-    if (!node_.IsMap()) fail("expected a mapping");
-    std::set<std::string> seen;
-    for (const auto& kv : node_) {
-      if (!kv.first.IsScalar()) fail("keys must be plain names");
-      const std::string key = kv.first.as<std::string>();
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        SpecNode(kv.second, child_path(key), file_).fail("unknown key (allowed here: " + list + ")");
-      }
-      if (!seen.insert(key).second) SpecNode(kv.second, child_path(key), file_).fail("duplicated key");
-    }
-  }
-  // The keys of a mapping in file order (yaml-cpp keeps it).
-  std::vector<std::string> keys() const {
-    if (!node_.IsMap()) fail("expected a mapping");
-    std::vector<std::string> out;
-    for (const auto& kv : node_) {
-      if (!kv.first.IsScalar()) fail("keys must be plain names");
-      const std::string key = kv.first.as<std::string>();
-      if (std::find(out.begin(), out.end(), key) != out.end())
-        SpecNode(kv.second, child_path(key), file_).fail("duplicated key");
-      out.push_back(key);
-    }
-    return out;
-  }
-  bool has(const std::string& key) const {
-    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
-  }
-  SpecNode at(const std::string& key) const {
-    if (!has(key)) SpecNode(YAML::Node(), child_path(key), file_).fail("missing required key");
-    return SpecNode(node_[key], child_path(key), file_);
-  }
-  SpecNode item(std::size_t i) const {
-    return SpecNode(node_[i], path_ + "[" + std::to_string(i) + "]", file_);
-  }
-  std::size_t size() const { return node_.size(); }
-  std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  SpecNode list() const {
-    if (!node_.IsSequence()) fail("expected a list");
-    if (node_.size() == 0) fail("the list is empty");
-    return *this;
-  }
-  double number() const {
-    if (!node_.IsScalar()) fail("expected a number");
-    double v = 0;
-    try {
-      v = node_.as<double>();
-    } catch (const YAML::Exception&) {
-      fail("expected a number, got '" + node_.Scalar() + "'");
-    }
-    if (!std::isfinite(v)) fail("expected a finite number");
-    return v;
-  }
-  long long integer(long long lo, long long hi) const {
-    if (!node_.IsScalar()) fail("expected an integer");
-    long long v = 0;
-    try {
-      v = node_.as<long long>();
-    } catch (const YAML::Exception&) {
-      fail("expected an integer, got '" + node_.Scalar() + "'");
-    }
-    if (v < lo || v > hi)
-      fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
-    return v;
-  }
-  std::string string() const {
-    if (!node_.IsScalar()) fail("expected a string");
-    return node_.as<std::string>();
-  }
-  std::vector<double> numbers() const {
-    const SpecNode l = list();
-    std::vector<double> v;
-    for (std::size_t i = 0; i < l.size(); ++i) v.push_back(l.item(i).number());
-    return v;
-  }
-
- private:
-  YAML::Node node_;
-  std::string path_;
-  const std::string* file_;
-};
+using SpecNode = YamlNode;  // models/yaml_node.h: the task loader's error style (file, key path, reason)
 
 std::string value_text(const ParamValue& p) { return p.json().dump(); }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "models/task_error.h"
+#include "models/yaml_node.h"
 
 namespace cmt {
 namespace {
@@ -19,69 +20,7 @@ namespace {
 // polygon's diameter. Looser than the contact tolerance because hand-written decimals are rounded.
 constexpr double kPolygonPlanarityTolerance = 1e-9;
 
-// A YAML node together with its key path, so that every message can say where the problem is.
-class Node {
- public:
-  Node(YAML::Node node, std::string path, const std::string* file)
-      : node_(node), path_(std::move(path)), file_(file) {}
-
-  [[noreturn]] void fail(const std::string& reason) const { throw TaskError(*file_, path_, reason); }
-  const std::string& path() const { return path_; }
-  bool is_map() const { return node_.IsMap(); }
-  bool is_sequence() const { return node_.IsSequence(); }
-  const YAML::Node& raw() const { return node_; }
-
-  // Map access with the set of allowed keys; unknown and duplicated keys are errors.
-  void require_map(const std::set<std::string>& allowed) const {
-    if (!node_.IsMap()) fail("expected a mapping");
-    std::set<std::string> seen;
-    for (const auto& kv : node_) {
-      if (!kv.first.IsScalar()) fail("keys must be plain names");
-      const std::string key = kv.first.as<std::string>();
-      if (!allowed.count(key)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        Node(kv.second, child_path(key), file_).fail("unknown key (allowed here: " + list + ")");
-      }
-      if (!seen.insert(key).second) Node(kv.second, child_path(key), file_).fail("duplicated key");
-    }
-  }
-  bool has(const std::string& key) const {
-    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
-  }
-  Node at(const std::string& key) const {
-    if (!has(key)) Node(YAML::Node(), child_path(key), file_).fail("missing required key");
-    return Node(node_[key], child_path(key), file_);
-  }
-  Node item(std::size_t i) const { return Node(node_[i], path_ + "[" + std::to_string(i) + "]", file_); }
-  std::size_t size() const { return node_.size(); }
-
-  double number() const {
-    if (!node_.IsScalar()) fail("expected a number");
-    double v = 0;
-    try {
-      v = node_.as<double>();
-    } catch (const YAML::Exception&) {
-      fail("expected a number, got '" + node_.Scalar() + "'");
-    }
-    if (!std::isfinite(v)) fail("expected a finite number");
-    return v;
-  }
-  std::string string() const {
-    if (!node_.IsScalar()) fail("expected a string");
-    return node_.as<std::string>();
-  }
-  Node sequence() const {
-    if (!node_.IsSequence()) fail("expected a list");
-    return *this;
-  }
-  std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
- private:
-  YAML::Node node_;
-  std::string path_;
-  const std::string* file_;
-};
+using Node = YamlNode;
 
 class Parser {
  public:
