@@ -11,6 +11,7 @@
 
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
+#include "experiments/rollout_cli.h"
 #include "models/task_error.h"
 #include "sim/rollout.h"
 
@@ -113,14 +114,7 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
   auto* cmd = app.add_subcommand("rollout", "Monte Carlo MuJoCo rollouts of a strategy under sampled errors");
   cmd->add_option("TASK", o->task, "task YAML file")->required();
   cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
-  cmd->add_option("-n", o->n, "number of rollouts (> 0)")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "master seed; rollout i uses a stream derived from (seed, i)")
-      ->capture_default_str();
-  cmd->add_option("--threads", o->threads,
-                  "worker threads (default: hardware threads); results do not depend on it");
-  cmd->add_option("--mode", o->mode, "error sampling: uniform, or extreme (mostly on the bounds' boundaries)")
-      ->check(CLI::IsMember({"uniform", "extreme"}))
-      ->capture_default_str();
+  add_rollout_sampling_options(cmd, o->n, o->seed, o->threads, o->mode);
   cmd->add_option(
          "--controller", o->controller,
          "controller form: admittance (Buckley eq. 3.23/3.24), impedance, or position (eq. 3.25, springs)")
@@ -131,9 +125,7 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
                   "also record trajectories (every 10 steps) to this CSV file");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
-    if (o->n <= 0) throw CLI::ValidationError("-n", "must be > 0, got " + std::to_string(o->n));
-    if (o->threads < 0)
-      throw CLI::ValidationError("--threads", "must be >= 0, got " + std::to_string(o->threads));
+    check_rollout_sampling_options(o->n, o->threads);
     const auto task = load_task(o->task);
     const Strategy* strategy = task->task.find_strategy(o->strategy);
     if (strategy == nullptr) {

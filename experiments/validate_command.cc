@@ -11,6 +11,7 @@
 
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
+#include "experiments/rollout_cli.h"
 #include "experiments/validation.h"
 #include "models/task_error.h"
 
@@ -68,14 +69,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
   auto* cmd = app.add_subcommand("validate", "Compare the verifier's prediction with MuJoCo rollouts");
   cmd->add_option("TASK", o->task, "task YAML file")->required();
   cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
-  cmd->add_option("-n", o->n, "number of rollouts (> 0)")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "master seed; rollout i uses a stream derived from (seed, i)")
-      ->capture_default_str();
-  cmd->add_option("--threads", o->threads,
-                  "worker threads (default: hardware threads); results do not depend on it");
-  cmd->add_option("--mode", o->mode, "error sampling: uniform, or extreme (mostly on the bounds' boundaries)")
-      ->check(CLI::IsMember({"uniform", "extreme"}))
-      ->capture_default_str();
+  add_rollout_sampling_options(cmd, o->n, o->seed, o->threads, o->mode);
   cmd->add_option("--controller", o->controller,
                   "controller form: impedance (default; the verifier's model), admittance (verified with "
                   "theta_v widened by the sensed-force error), or position (springs)")
@@ -91,9 +85,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
   cmd->add_flag("--ends", o->ends, "list every observed motion end in the JSON");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
-    if (o->n <= 0) throw CLI::ValidationError("-n", "must be > 0, got " + std::to_string(o->n));
-    if (o->threads < 0)
-      throw CLI::ValidationError("--threads", "must be >= 0, got " + std::to_string(o->threads));
+    check_rollout_sampling_options(o->n, o->threads);
     if (o->sticking_trials < 0)
       throw CLI::ValidationError("--sticking-trials",
                                  "must be >= 0, got " + std::to_string(o->sticking_trials));
