@@ -52,8 +52,9 @@ void add_calibrate_friction_command(CLI::App& app, CommandState& state) {
       "Check the simulated robot against Coulomb friction on a face and in a concave edge");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   auto soft_layer = std::make_shared<bool>(false);
-  cmd->add_flag("--soft-layer", *soft_layer,
-                "use the soft-surface-layer scene (sim/mjcf_export.h soft_layer_scene) instead of the rollouts'");
+  cmd->add_flag(
+      "--soft-layer", *soft_layer,
+      "use the soft-surface-layer scene (sim/mjcf_export.h soft_layer_scene) instead of the rollouts'");
   cmd->callback([&state, soft_layer] {
     const CalibrationResult r =
         *soft_layer ? calibrate_friction({ControllerForm::kImpedance, ControllerForm::kAdmittance,

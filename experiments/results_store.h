@@ -43,7 +43,7 @@ struct UnitRecord {
   bool reliable = false;
   std::string failure;
   double verify_seconds = 0;
-  std::string verify_json;  // verify_json(task, prediction, seconds)
+  std::string verify_json;      // verify_json(task, prediction, seconds)
   double verifier_theta_v = 0;  // the theta_v the verifier used (widened for the admittance form)
   std::string verifier_model;   // verifier_model_json: that theta_v and why
   // rollouts

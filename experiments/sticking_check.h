@@ -30,8 +30,9 @@ struct StickingTrialRecord {
   int atom = 0;
   AtomKind kind = AtomKind::kFace;
   StickClass cls = StickClass::kMay;
-  double command_angle = 0;  // angle of the command from the atom's inward direction (sum of face normals), rad
-  double phi = 0;            // friction angle atan(mu), rad
+  double command_angle =
+      0;           // angle of the command from the atom's inward direction (sum of face normals), rad
+  double phi = 0;  // friction angle atan(mu), rad
   bool stuck = false;
   double speed = 0;  // observed speed / commanded speed over the measuring window
 };
@@ -42,7 +43,7 @@ struct StickingCheckResult {
   int must = 0, may = 0, never = 0;
   int may_stuck = 0;                               // may-stick cases that stuck
   nlohmann::json worst = nlohmann::json::array();  // the disagreeing trials (first 20)
-  std::vector<StickingTrialRecord> records;       // every trial, in trial order
+  std::vector<StickingTrialRecord> records;        // every trial, in trial order
   double seconds = 0;
 };
 

@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "controllers/random.h"
-#include "models/yaml_node.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "models/yaml_node.h"
 
 namespace cmt {
 

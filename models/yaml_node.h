@@ -46,7 +46,7 @@ class YamlNode {
   }
   // The same with a set of allowed keys (a template, so that a braced list picks the overload above).
   template <class Set>
-    requires std::same_as<Set, std::set<std::string>>
+  requires std::same_as<Set, std::set<std::string>>
   void require_map(const Set& allowed) const {
     require_map(std::vector<std::string>(allowed.begin(), allowed.end()));
   }
@@ -70,7 +70,9 @@ class YamlNode {
     if (!has(key)) YamlNode(YAML::Node(), child_path(key), file_).fail("missing required key");
     return YamlNode(node_[key], child_path(key), file_);
   }
-  YamlNode item(std::size_t i) const { return YamlNode(node_[i], path_ + "[" + std::to_string(i) + "]", file_); }
+  YamlNode item(std::size_t i) const {
+    return YamlNode(node_[i], path_ + "[" + std::to_string(i) + "]", file_);
+  }
   std::size_t size() const { return node_.size(); }
 
   YamlNode sequence() const {

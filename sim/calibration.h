@@ -79,8 +79,9 @@ struct CalibrationResult {
 };
 
 // Runs every case (about 300; a few seconds) in the given MuJoCo scene (default: the rollouts' scene;
-// soft_layer_scene() is the candidate that passes the concave edge). `forms` defaults to all three controller forms (the position
-// form only for springs, and without a speed criterion: its speed is the pace of its via points).
+// soft_layer_scene() is the candidate that passes the concave edge). `forms` defaults to all three controller
+// forms (the position form only for springs, and without a speed criterion: its speed is the pace of its via
+// points).
 CalibrationResult calibrate_friction(std::vector<ControllerForm> forms = {ControllerForm::kImpedance,
                                                                           ControllerForm::kAdmittance,
                                                                           ControllerForm::kPosition},

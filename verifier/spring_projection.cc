@@ -178,10 +178,9 @@ class SpringProjector {
   }
   // The same tests pointwise: a point of face fi strictly within no_slide_radius of p' must leave (the pull
   // points into free space for every sensed position), one within no_leave_radius must stay. 0: no such
-  // points. From (−depth − eps_s) = tan(theta_v) (d + eps_s), resp. (depth − eps_s) = tan(theta_v) (d + eps_s).
-  double no_slide_radius(int fi) const {
-    return std::max(0.0, (-depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s);
-  }
+  // points. From (−depth − eps_s) = tan(theta_v) (d + eps_s), resp. (depth − eps_s) = tan(theta_v) (d +
+  // eps_s).
+  double no_slide_radius(int fi) const { return std::max(0.0, (-depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
   double no_leave_radius(int fi) const { return std::max(0.0, (depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
   // The part of the face inside a polygon inscribed in that disk, shrunk by the decision margin (what is
   // subtracted is inside the open disk: sound).
@@ -446,5 +445,3 @@ SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet
 }
 
 }  // namespace cmt
-
-

@@ -20,8 +20,9 @@ const CalibrationResult& result() {
 }
 // The soft-surface-layer scene (sim/mjcf_export.h soft_layer_scene()).
 const CalibrationResult& soft_result() {
-  static const CalibrationResult r = calibrate_friction(
-      {ControllerForm::kImpedance, ControllerForm::kAdmittance, ControllerForm::kPosition}, soft_layer_scene());
+  static const CalibrationResult r =
+      calibrate_friction({ControllerForm::kImpedance, ControllerForm::kAdmittance, ControllerForm::kPosition},
+                         soft_layer_scene());
   return r;
 }
 
