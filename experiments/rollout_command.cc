@@ -36,7 +36,9 @@ nlohmann::json motion_json(const LoadedTask& lt, const MotionOutcome& m) {
           {"steps", m.steps},
           {"max_penetration", m.max_penetration},
           {"velocity_switches", m.velocity_switches},
-          {"replans", m.replans}};
+          {"replans", m.replans},
+          {"node", m.node},
+          {"branch", m.branch}};
 }
 
 nlohmann::json outcome_json(const LoadedTask& lt, const RolloutOutcome& r) {
@@ -54,6 +56,7 @@ nlohmann::json outcome_json(const LoadedTask& lt, const RolloutOutcome& r) {
                       {"unstable", r.unstable},
                       {"motions", motions}};
   if (r.unstable) j["unstable_reason"] = r.unstable_reason;
+  if (r.no_branch) j["no_branch"] = true;  // a conditional test passed no branch (no 'else')
   return j;
 }
 

@@ -65,7 +65,10 @@ struct ValidateOptions {
 // One observed motion end (every motion of every rollout, not only the last).
 struct ObservedEnd {
   int rollout = 0;  // rollout index
-  int motion = 0;   // index into the strategy's motions
+  // The prediction's step for this motion (VerifyResult::steps; = the motion's index in a decision-free
+  // strategy), or the motion's index in the rollout when the verifier predicted nothing for it.
+  int motion = 0;
+  std::string motion_name;
   Vec3 end = Vec3::Zero();
   int atom = -1;  // nearest atom within the rollout atom tolerance, -1 = free space
   Termination termination = Termination::kNone;

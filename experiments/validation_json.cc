@@ -13,8 +13,10 @@ std::string atom_label(const LoadedTask& lt, int atom) {
 }
 
 nlohmann::json end_json(const LoadedTask& lt, const ValidationResult& r, const ObservedEnd& e) {
-  const std::string motion =
-      e.motion < static_cast<int>(r.prediction.steps.size()) ? r.prediction.steps[e.motion].motion : "";
+  const std::string motion = !e.motion_name.empty() ? e.motion_name
+                             : e.motion >= 0 && e.motion < static_cast<int>(r.prediction.steps.size())
+                                 ? r.prediction.steps[static_cast<std::size_t>(e.motion)].motion
+                                 : "";
   return {{"rollout", e.rollout},
           {"seed", e.seed},
           {"mode", sample_mode_name(e.mode)},
@@ -74,7 +76,9 @@ nlohmann::json counterexample_json(const LoadedTask& lt, const Counterexample& c
                        {"end", point_json(m.end, lt.task.dimension)},
                        {"atom", m.atom},
                        {"atom_name", atom_label(lt, m.atom)},
-                       {"termination", termination_name(m.termination)}});
+                       {"termination", termination_name(m.termination)},
+                       {"node", m.node},
+                       {"branch", m.branch}});
   return {{"seed", cx.seed},
           {"index", cx.index},
           {"mode", sample_mode_name(cx.mode)},

@@ -21,20 +21,28 @@ void observe_rollout(const std::vector<VerifyStep>& steps, const RolloutOutcome&
     const MotionOutcome& m = ro.motions[mi];
     ObservedEnd e;
     e.rollout = ro.index;
-    e.motion = static_cast<int>(mi);
+    // The prediction for this motion: the step that simulated its strategy node (conditional strategies,
+    // Buckley §4.2); outcomes and steps built without nodes pair by position.
+    const int node = m.node >= 0 ? m.node : static_cast<int>(mi);
+    int step_index = -1;
+    for (std::size_t k = 0; k < steps.size(); ++k)
+      if ((steps[k].node >= 0 ? steps[k].node : static_cast<int>(k)) == node) step_index = static_cast<int>(k);
+    e.motion = step_index >= 0 ? step_index : static_cast<int>(mi);
+    e.motion_name = m.motion;
     e.end = m.end;
     e.atom = m.atom;
     e.termination = m.termination;
     e.seed = seed;
     e.mode = mode;
-    const bool predicted = mi < steps.size();
-    if (predicted) e.distance = distance_to_prediction(steps[mi], m.end);
+    const bool predicted = step_index >= 0;
+    if (predicted) e.distance = distance_to_prediction(steps[static_cast<std::size_t>(step_index)], m.end);
     e.inside = predicted && e.distance <= tolerance;
     if (m.termination == Termination::kNone) {
       // Not a termination point. may_not_terminate = false says some reached atom can stick, not that every
       // motion stops; a time-out under it is still worth seeing.
       timeouts->push_back(e);
-      if (predicted && !steps[mi].may_not_terminate) unexpected_timeouts->push_back(e);
+      if (predicted && !steps[static_cast<std::size_t>(step_index)].may_not_terminate)
+        unexpected_timeouts->push_back(e);
       continue;
     }
     if (!predicted) {

@@ -60,6 +60,21 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
     if (with_reached && s.reached) steps.back()["reached"] = pieces_json(lt, s.reached->pieces());
     // The part of `termination` due to the motion's termination sets (Buckley §4.5), when it has any.
     if (s.sensing) steps.back()["sensing_termination"] = pieces_json(lt, s.sensing->pieces());
+    // Conditional strategies (Buckley §4.2): where the step sits in the strategy tree and the test after it.
+    nlohmann::json& j = steps.back();
+    j["node"] = s.node;
+    j["parent"] = s.parent;
+    if (s.branch >= 0) j["branch"] = s.branch;
+    if (!s.branches.empty()) {
+      nlohmann::json branches = nlohmann::json::array();
+      for (std::size_t i = 0; i < s.branches.size(); ++i)
+        branches.push_back({{"branch", i},
+                            {"reachable", !s.branches[i].start->empty()},
+                            {"step", s.branches[i].step},
+                            {"start", pieces_json(lt, s.branches[i].start->pieces())}});
+      j["branches"] = branches;
+    }
+    if (s.unmatched) j["unmatched"] = pieces_json(lt, s.unmatched->pieces());
   }
   nlohmann::json out = {
       {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};
@@ -90,21 +105,23 @@ void add_verify_command(CLI::App& app, CommandState& state) {
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
-    std::vector<std::string> motions;
+    Strategy strategy;
     if (!options->strategy.empty()) {
       const Strategy* s = task->task.find_strategy(options->strategy);
       if (!s)
         throw TaskError(task->task.source_file, "strategies",
                         "no strategy named '" + options->strategy + "'");
-      motions = s->motions;
+      strategy = *s;
     } else if (!options->motion.empty()) {
-      motions = {options->motion};
+      if (!task->task.find_motion(options->motion))
+        throw TaskError(task->task.source_file, "motions", "no motion named '" + options->motion + "'");
+      strategy = Strategy::sequence(options->motion, {options->motion});
     } else {
       throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
     }
     VerifyResult result;
     try {
-      result = verify_motions(*task, motions);
+      result = verify_strategy(*task, strategy);
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;
@@ -116,7 +133,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     } else {
       std::cout << task->task.name << ": " << (result.reliable ? "reliable" : "NOT reliable") << "\n";
       for (const auto& s : j["steps"]) {
-        std::cout << "  " << s["motion"].get<std::string>() << " terminates on:";
+        std::cout << "  " << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
+                  << s["motion"].get<std::string>() << " terminates on:";
         for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
         std::cout << "\n";
       }

@@ -26,6 +26,26 @@ const char* unit_name(LengthUnit unit) {
   return "m";
 }
 
+bool Strategy::conditional() const {
+  for (const StrategyNode& n : nodes)
+    if (!n.branches.empty()) return true;
+  return false;
+}
+
+Strategy Strategy::sequence(std::string name, std::vector<std::string> motions) {
+  Strategy s;
+  s.name = std::move(name);
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    StrategyNode n;
+    n.motion = motions[i];
+    n.parent = static_cast<int>(i) - 1;
+    n.next = i + 1 < motions.size() ? static_cast<int>(i) + 1 : -1;
+    s.nodes.push_back(n);
+  }
+  s.motions = std::move(motions);
+  return s;
+}
+
 const Motion* Task::find_motion(const std::string& motion_name) const {
   for (const Motion& m : motions)
     if (m.name == motion_name) return &m;

@@ -79,11 +79,39 @@ struct Motion {
   MotionTermination terminate;  // optional sensing termination (types 2 and 3)
 };
 
-// A decision-free sequence of motions (contracts.md). Conditional strategies extend this later (Buckley
-// §4.2).
+// One branch of a conditional test (Buckley §4.2, Fig 4.2): after a motion the robot checks whether its
+// sensed position and sensed force are consistent with a node I_i and runs the first branch whose test passes.
+// The test has the form of a motion's termination sets: the sensed position in one of `when.position` (if
+// given) and the sensed force direction in one of `when.force` (if given). `otherwise` is the `else` branch,
+// taken when no earlier test passed. `first` is the strategy node run next; -1 ends the strategy there.
+struct StrategyBranch {
+  MotionTermination when;
+  bool otherwise = false;
+  int first = -1;
+  std::string key;  // YAML key path, for messages
+};
+
+// One commanded motion in a strategy's tree. Nodes are numbered in file order (pre-order), node 0 runs
+// first; every node is reached along exactly one path (Buckley's strategy graphs are acyclic; a tree keeps
+// each node's start set single).
+struct StrategyNode {
+  std::string motion;
+  int parent = -1;  // the node run before this one, -1 for node 0
+  int branch = -1;  // index of the parent's branch that leads here, -1 when it follows unconditionally
+  int next = -1;    // the node that follows unconditionally, -1 for none
+  std::vector<StrategyBranch> branches;  // the conditional test after this motion (then next == -1)
+};
+
+// A strategy (contracts.md, docs/task-format.md "strategies"): a decision-free sequence of motions, or a
+// tree with conditional branches (Buckley §4.2).
 struct Strategy {
   std::string name;
+  // Decision-free: the sequence. Conditional: every node's motion in node order (not an execution order).
   std::vector<std::string> motions;
+  std::vector<StrategyNode> nodes;  // always set; a sequence is a chain of nodes linked by `next`
+  bool conditional() const;
+  // A decision-free strategy of `motions` (the nodes are the chain).
+  static Strategy sequence(std::string name, std::vector<std::string> motions);
 };
 
 struct Task {

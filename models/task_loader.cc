@@ -332,12 +332,70 @@ class Parser {
       if (list.size() == 0) s.fail("a strategy needs at least one motion");
       Strategy strategy;
       strategy.name = name;
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        const std::string motion = list.item(i).string();
-        if (!task.find_motion(motion)) list.item(i).fail("unknown motion '" + motion + "'");
-        strategy.motions.push_back(motion);
-      }
+      parse_strategy_list(list, task, strategy, -1, -1);
+      for (const StrategyNode& node : strategy.nodes) strategy.motions.push_back(node.motion);
       task.strategies.push_back(strategy);
+    }
+  }
+
+  // One list of a strategy (docs/task-format.md "strategies"): motion names, optionally ending in one
+  // `branch:` item (Buckley §4.2 conditional test). Appends its nodes to strategy.nodes in file order (so
+  // node ids are pre-order) and returns the first one's id, -1 for an empty list (a branch that stops).
+  int parse_strategy_list(const Node& list, const Task& task, Strategy& strategy, int parent,
+                          int parent_branch) const {
+    int first = -1, previous = parent;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Node item = list.item(i);
+      if (item.is_map()) {
+        item.require_map({"branch"});
+        if (previous < 0 || (i == 0 && parent_branch >= 0))
+          item.fail("a branch tests the sensors after a motion: put a motion before it");
+        if (i + 1 != list.size())
+          list.item(i + 1).fail("nothing may follow a branch in the same list (continue inside its branches)");
+        parse_branch(item.at("branch"), task, strategy, previous);
+        break;
+      }
+      const std::string motion = item.string();
+      if (!task.find_motion(motion)) item.fail("unknown motion '" + motion + "'");
+      StrategyNode node;
+      node.motion = motion;
+      node.parent = previous;
+      node.branch = i == 0 ? parent_branch : -1;
+      const int id = static_cast<int>(strategy.nodes.size());
+      strategy.nodes.push_back(node);
+      if (i > 0) strategy.nodes[static_cast<std::size_t>(previous)].next = id;
+      if (first < 0) first = id;
+      previous = id;
+    }
+    return first;
+  }
+
+  void parse_branch(const Node& n, const Task& task, Strategy& strategy, int after) const {
+    const Node list = n.list();
+    bool has_test = false;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Node b = list.item(i);
+      b.require_map({"when", "then", "else"});
+      const bool otherwise = b.raw()["else"].IsDefined();
+      StrategyBranch branch;
+      branch.key = b.path();
+      branch.otherwise = otherwise;
+      if (otherwise) {
+        if (b.raw()["when"].IsDefined() || b.raw()["then"].IsDefined())
+          b.fail("an 'else' branch has no 'when' or 'then' (its list is the value of 'else')");
+        if (i + 1 != list.size()) list.item(i + 1).fail("the 'else' branch must be the last one");
+        if (!has_test) b.fail("a branch needs at least one 'when' test before 'else'");
+      } else {
+        if (!b.raw()["when"].IsDefined()) b.fail("a branch is either {when: TEST, then: [...]} or {else: [...]}");
+        if (!b.raw()["then"].IsDefined()) b.at("then");  // "missing required key"
+        branch.when = parse_termination(Node(b.raw()["when"], b.child_path("when"), &file_));
+        has_test = true;
+      }
+      const int index = static_cast<int>(strategy.nodes[static_cast<std::size_t>(after)].branches.size());
+      strategy.nodes[static_cast<std::size_t>(after)].branches.push_back(branch);
+      const Node body(b.raw()[otherwise ? "else" : "then"], b.child_path(otherwise ? "else" : "then"), &file_);
+      const int first = parse_strategy_list(body.sequence(), task, strategy, after, index);
+      strategy.nodes[static_cast<std::size_t>(after)].branches[static_cast<std::size_t>(index)].first = first;
     }
   }
 

@@ -325,13 +325,15 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
   double rollout_time = 0;
   bool all_terminated = true;
 
-  for (std::size_t mi = 0; mi < strategy.motions.size(); ++mi) {
-    const Motion* motion = lt.task.find_motion(strategy.motions[mi]);
+  int motion_index = 0;
+  for (int node_id = strategy.nodes.empty() ? -1 : 0; node_id >= 0; ++motion_index) {
+    const StrategyNode& node = strategy.nodes[static_cast<std::size_t>(node_id)];
+    const Motion* motion = lt.task.find_motion(node.motion);
     if (motion == nullptr)
-      throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" +
-                                  strategy.motions[mi] + "'");
+      throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" + node.motion + "'");
     MotionOutcome mo;
     mo.motion = motion->name;
+    mo.node = node_id;
     MotionErrors errors(sampler, rng, options.switch_interval);
     const Vec3 start = s.position();
     auto controller =
@@ -366,7 +368,7 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
         break;
       }
       if (options.record_trajectory && step % options.trajectory_stride == 0)
-        out.trajectory.push_back({rollout_time + t + dt, static_cast<int>(mi), s.position(), sensed.position,
+        out.trajectory.push_back({rollout_time + t + dt, motion_index, s.position(), sensed.position,
                                   s.data.get()->ncon > 0});
     }
     total_steps_ += step;
@@ -379,22 +381,48 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
     mo.contact_force = s.force;
     mo.velocity_switches = errors.switches();
     mo.replans = controller->replans();
-    out.motions.push_back(mo);
     if (mo.termination == Termination::kUnstable) {
       out.unstable = true;
       out.unstable_reason = "motion '" + motion->name + "': " + s.failure;
     }
     if (mo.termination == Termination::kNone || mo.termination == Termination::kUnstable) {
+      out.motions.push_back(mo);
       all_terminated = false;
       break;  // a motion that did not terminate ends the strategy (a real robot would stop with an error)
     }
+    if (node.next >= 0) {
+      node_id = node.next;
+    } else if (!node.branches.empty()) {
+      // Buckley §4.2: one reading of the sensors at rest decides the branch.
+      const Vec3 sensed_position = s.position() + sampler.sensing_offset(rng);
+      const Vec3 sensed_force = sampler.force_error(rng).apply(s.force);
+      mo.branch = choose_branch(node, sensed_position, sensed_force);
+      if (mo.branch < 0) out.no_branch = true;
+      node_id = mo.branch < 0 ? -1 : node.branches[static_cast<std::size_t>(mo.branch)].first;
+    } else {
+      node_id = -1;
+    }
+    out.motions.push_back(mo);
   }
   out.end = s.position();
   out.atom =
       out.motions.empty() ? lt.cspace.nearest_atom(out.end, scene.atom_tolerance()) : out.motions.back().atom;
   out.termination = out.motions.empty() ? Termination::kSticking : out.motions.back().termination;
-  out.success = all_terminated && !out.unstable && scene.goal_distance(out.end) <= scene.atom_tolerance();
+  out.success = all_terminated && !out.unstable && !out.no_branch &&
+                scene.goal_distance(out.end) <= scene.atom_tolerance();
   return out;
+}
+
+int choose_branch(const StrategyNode& node, const Vec3& sensed_position, const Vec3& sensed_force) {
+  for (std::size_t i = 0; i < node.branches.size(); ++i) {
+    const StrategyBranch& b = node.branches[i];
+    if (b.otherwise) return static_cast<int>(i);
+    const TerminationSpec test = termination_spec(b.when);
+    if (test.sensed_position && !test.sensed_position->contains(sensed_position)) continue;
+    if (test.sensed_force && !test.sensed_force->contains(sensed_force)) continue;
+    return static_cast<int>(i);
+  }
+  return -1;
 }
 
 std::vector<RolloutOutcome> run_rollouts(std::shared_ptr<const RolloutScene> scene, const Strategy& strategy,

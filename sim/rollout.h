@@ -89,6 +89,8 @@ struct TrajectoryPoint {
 
 struct MotionOutcome {
   std::string motion;
+  int node = -1;    // the strategy node it ran (models/task.h StrategyNode; = its index in a sequence)
+  int branch = -1;  // the branch its conditional test chose, -1 when it has no test or no test passed
   Vec3 end = Vec3::Zero();  // true C-space point at termination, task units
   int atom = -1;            // nearest atom within the atom tolerance, -1 = free space
   Termination termination = Termination::kNone;
@@ -106,7 +108,8 @@ struct RolloutOutcome {
   Vec3 end = Vec3::Zero();
   int atom = -1;
   Termination termination = Termination::kNone;  // of the last motion run
-  bool success = false;                          // every motion terminated and the end point is in the goal
+  bool success = false;  // every motion terminated, every conditional test chose a branch, the end is in the goal
+  bool no_branch = false;  // a conditional test (Buckley §4.2) passed no branch and there was no `else`
   bool unstable = false;
   std::string unstable_reason;
   std::vector<MotionOutcome> motions;
@@ -174,7 +177,10 @@ class RolloutRunner {
   RolloutRunner& operator=(const RolloutRunner&) = delete;
 
   // Rollout `index` of `strategy` under `seed`. Never throws for simulation failures: an unstable rollout is
-  // returned with unstable = true.
+  // returned with unstable = true. Conditional strategies: after a motion with a test, the sensors are read
+  // once (a fresh sensing offset within eps_s, a fresh force-direction error within theta_f, both from the
+  // rollout's stream) and the first branch whose test passes runs (choose_branch); decision-free strategies
+  // draw nothing extra.
   RolloutOutcome run(const Strategy& strategy, std::uint64_t seed, int index);
 
   // Calibration and tests: puts the robot at rest at `position` (task units) and runs `motion` without
@@ -192,6 +198,10 @@ class RolloutRunner {
   std::unique_ptr<Impl> impl_;
   long total_steps_ = 0;
 };
+
+// Buckley §4.2: the first branch of `node` whose test passes the sensed position and sensed force (an
+// `else` passes always), -1 when none does.
+int choose_branch(const StrategyNode& node, const Vec3& sensed_position, const Vec3& sensed_force);
 
 // Runs rollouts 0 .. n-1 over `threads` threads (one RolloutRunner, i.e. one mjData, per thread); results are
 // in index order. `progress`, if set, is called from the calling thread with the number done so far.

@@ -1,5 +1,6 @@
-// ReachedSet::within_box (verifier/reached_set.h): the part of a set of contact points inside an axis box,
-// used for Buckley's weakly consistent positions (§4.5, Def 4.1) of a motion's position set P_s.
+// ReachedSet::within_box and without_box (verifier/reached_set.h): the part of a set of contact points inside
+// an axis box (Buckley's weakly consistent positions, §4.5 Def 4.1, of a position set P_s) and the rest
+// (removing the strongly consistent ones, Def 4.2, for conditional tests, §4.2).
 #include <algorithm>
 #include <array>
 
@@ -111,6 +112,63 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
 
   for (std::size_t vi = 0; vi < in.vertices.size(); ++vi)
     if (in.vertices[vi] && in_box(box, c.vertices()[vi].point)) o.add_vertex(static_cast<int>(vi));
+  return out;
+}
+
+ReachedSet ReachedSet::without_box(const AxisBox& box) const {
+  const CSpace& c = cspace();
+  ReachedSet out(c);
+  Impl& o = *out.impl_;
+  const Impl& in = *impl_;
+  const std::array<fp::Plane3, 6> planes = box_planes(box);
+
+  for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
+    const fp::FaceSet& fs = in.faces[fi];
+    if (fs.empty()) continue;
+    const int f = static_cast<int>(fi);
+    Points2 window = in.face_polygon[fi];
+    for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, in.charts[fi]));
+    if (!fs.region.is_empty()) {
+      PolygonSet2 rest = fs.region;
+      // A window without area removes nothing from a regularized region.
+      if (window.size() >= 3) rest.difference(fp::to_polygon(window));
+      if (!rest.is_empty()) o.add_region(f, rest, nullptr);
+    }
+    for (const fp::Segment2& s : fs.segments) {
+      FT t0, t1;
+      if (window.empty() || !fp::clip_segment(window, s.source(), s.target(), &t0, &t1)) {
+        o.add_segment(f, s.source(), s.target());
+        continue;
+      }
+      // Keep the closed parts before t0 and after t1.
+      const auto at = [&](const FT& t) { return s.source() + (s.target() - s.source()) * t; };
+      if (t0 > 0) o.add_segment(f, s.source(), at(t0));
+      if (t1 < 1) o.add_segment(f, at(t1), s.target());
+    }
+    for (const Point2& p : fs.points)
+      if (window.empty() || !fp::inside_closed(window, p)) o.add_point(f, p);
+  }
+
+  for (std::size_t ei = 0; ei < in.edges.size(); ++ei) {
+    if (in.edges[ei].empty()) continue;
+    const Edge& e = c.edges()[ei];
+    double b0 = 0, b1 = 0;
+    const bool cut = box_interval(box, e.a, e.b, &b0, &b1);
+    // The removed interval, shrunk: what is removed is surely inside the box.
+    b0 += kEdgeParamSlack;
+    b1 -= kEdgeParamSlack;
+    for (const EdgeInterval& iv : in.edges[ei]) {
+      if (!cut || b0 >= b1 || iv.t1 < b0 || iv.t0 > b1) {
+        o.add_interval(static_cast<int>(ei), iv.t0, iv.t1, nullptr);
+        continue;
+      }
+      if (iv.t0 < b0) o.add_interval(static_cast<int>(ei), iv.t0, b0, nullptr);
+      if (iv.t1 > b1) o.add_interval(static_cast<int>(ei), b1, iv.t1, nullptr);
+    }
+  }
+
+  for (std::size_t vi = 0; vi < in.vertices.size(); ++vi)
+    if (in.vertices[vi] && !in_box(box, c.vertices()[vi].point)) o.add_vertex(static_cast<int>(vi));
   return out;
 }
 

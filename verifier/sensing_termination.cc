@@ -1,11 +1,18 @@
 // Weakly consistent reached points of a motion's termination sets (Buckley §4.5, Def 4.1).
 #include "verifier/sensing_termination.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cmt {
 
 ReachedSet sensing_termination(const LoadedTask& lt, const AtomCones& cones, const Motion& m,
                                const ReachedSet& reached) {
-  const MotionTermination& t = m.terminate;
+  return weakly_consistent(lt, cones, m.terminate, reached);
+}
+
+ReachedSet weakly_consistent(const LoadedTask& lt, const AtomCones& cones, const MotionTermination& t,
+                             const ReachedSet& reached) {
   const CSpace& c = lt.cspace;
   if (!t.any()) return ReachedSet(c);
 
@@ -38,6 +45,40 @@ ReachedSet sensing_termination(const LoadedTask& lt, const AtomCones& cones, con
     out = out.restricted(keep);
   }
   return out;
+}
+
+ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& cones, const MotionTermination& t,
+                                       const ReachedSet& set) {
+  const CSpace& c = lt.cspace;
+  if (!t.any()) return set;
+  // Which atoms surely pass the force part (all of them when there is none).
+  std::vector<bool> force_sure(static_cast<std::size_t>(c.atom_count()), t.force.empty());
+  if (!t.force.empty()) {
+    for (int id : set.atoms()) {
+      if (c.atom_kind(id) != AtomKind::kFace || !cones[id].circular()) continue;
+      const CircularCone& g = cones[id].generators()[0];
+      for (const ForceCone& f : t.force) {
+        const double between = std::acos(std::clamp(g.axis.normalized().dot(f.direction), -1.0, 1.0));
+        if (between + g.half_angle + lt.task.uncertainty.theta_f + kForceContainmentMargin <= f.angle)
+          force_sure[static_cast<std::size_t>(id)] = true;
+      }
+    }
+  }
+  std::vector<bool> other(force_sure.size());
+  for (std::size_t i = 0; i < other.size(); ++i) other[i] = !force_sure[i];
+  ReachedSet kept = set.restricted(other);  // no point here surely passes
+  ReachedSet sure = set.restricted(force_sure);
+  if (t.position.empty()) return kept;  // the force part alone decides: every reading passes on those faces
+  const double shrink = lt.task.uncertainty.eps_s + kSensingBoxRelativeSlack * c.scale();
+  for (const AxisBox& b : t.position) {
+    AxisBox inner = b;
+    inner.min.array() += shrink;
+    inner.max.array() -= shrink;
+    if ((inner.min.array() > inner.max.array()).any()) continue;  // the ball fits nowhere in this box
+    sure = sure.without_box(inner);
+  }
+  kept.unite(sure);
+  return kept;
 }
 
 }  // namespace cmt

@@ -24,4 +24,25 @@ inline constexpr double kSensingBoxRelativeSlack = 1e-9;
 ReachedSet sensing_termination(const LoadedTask& task, const AtomCones& cones, const Motion& m,
                                const ReachedSet& reached);
 
+// The same for any sensing test of that form (a motion's termination sets, a conditional branch's test,
+// §4.2): the points of `set` where some sensor reading within the error bounds passes `test` (Def 4.1,
+// weakly consistent). Empty when the test gives neither set.
+ReachedSet weakly_consistent(const LoadedTask& task, const AtomCones& cones, const MotionTermination& test,
+                             const ReachedSet& set);
+
+// `set` less points where every sensor reading within the error bounds surely passes `test` (Def 4.2,
+// strongly consistent), never removing a point where some reading fails it:
+//   position: the sensing ball lies in one box, i.e. the point is in the box shrunk by eps_s on every axis
+//   (exact for a Euclidean ball in an axis box), shrunk further by kSensingBoxRelativeSlack x scale;
+//   force: only face atoms whose friction cone widened by theta_f lies inside one cone of F_s (the reaction
+//   force at rest is in the cone; edges and vertices are never removed: their sums are not tested for
+//   containment), with kForceContainmentMargin to spare;
+//   both: the position removal on those faces only.
+ReachedSet without_strongly_consistent(const LoadedTask& task, const AtomCones& cones,
+                                       const MotionTermination& test, const ReachedSet& set);
+
+// Angle (radians) by which a widened face cone must clear the rim of an F_s cone to count as inside it: far
+// above the rounding of the double angle formulas, far below any angle a task gives.
+inline constexpr double kForceContainmentMargin = 1e-9;
+
 }  // namespace cmt

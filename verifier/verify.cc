@@ -1,4 +1,4 @@
-// Decision-free strategy verification (Buckley §4.2, Alg 4.1 per motion).
+// Strategy verification (Buckley §4.2, Fig 4.2; Alg 4.1 / 4.4 per motion, §4.5 sensing termination).
 #include "verifier/verify.h"
 
 #include "models/task_error.h"
@@ -8,83 +8,155 @@
 #include "verifier/spring_projection.h"
 
 namespace cmt {
+namespace {
+
+// One motion's termination set from `start` (damper Alg 4.1, spring Alg 4.4, plus §4.5 sensing).
+VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& motion, const ReachedSet& start) {
+  VerifyStep step{motion.name, ReachedSet(lt.cspace)};
+  if (motion.kind == Motion::Kind::kSpring) {
+    SpringProjection p = forward_project_spring(lt, start, motion.target);
+    step.termination = std::move(p.termination);
+    step.may_not_terminate = p.may_not_terminate;
+    step.fallback = p.fallback;
+    step.fixpoint_steps = p.steps;
+    step.reached_area = p.reached.area();
+    step.free_termination = p.free_termination;
+    step.free_center = p.free_center;
+    step.free_radius = p.free_radius;
+    step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
+  } else {
+    DamperProjection p = forward_project_damper(lt, cones, start, motion.target);
+    step.termination = std::move(p.termination);
+    step.may_not_terminate = p.may_not_terminate;
+    step.fallback = p.fallback;
+    step.fixpoint_steps = p.steps;
+    step.reached_area = p.reached.area();
+    step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
+  }
+  if (motion.terminate.any()) {
+    // §4.5: the weakly consistent reached points join the weak sticking points (Alg 4.1 step 4). A motion
+    // that can stop by sensing somewhere may terminate even where nothing sticks.
+    auto sensed = std::make_shared<const ReachedSet>(sensing_termination(lt, cones, motion, *step.reached));
+    step.termination.unite(*sensed);
+    step.may_not_terminate = step.may_not_terminate && sensed->empty();
+    step.sensing = std::move(sensed);
+  }
+  return step;
+}
+
+class StrategyVerifier {
+ public:
+  StrategyVerifier(const LoadedTask& lt, const Strategy& strategy)
+      : lt_(lt), strategy_(strategy), cones_(lt.cspace), goal_(ReachedSet::from_regions(lt, lt.task.goal)) {
+    out_.node_step.assign(strategy.nodes.size(), -1);
+  }
+
+  VerifyResult run() {
+    if (strategy_.nodes.empty()) {
+      out_.failure = "empty strategy";
+      return std::move(out_);
+    }
+    simulate_node(0, ReachedSet::from_region(lt_, lt_.task.start), -1, -1);
+    out_.reliable = out_.failed_step < 0;
+    return std::move(out_);
+  }
+
+ private:
+  void fail(int step, std::string why, std::vector<ReachedPiece> pieces = {}) {
+    if (out_.failed_step >= 0) return;  // the first failure is reported
+    out_.failed_step = step;
+    out_.failure = std::move(why);
+    out_.outside_goal = std::move(pieces);
+  }
+
+  // A final set (the last motion of a path, or a branch that stops) must lie in the goal.
+  void check_goal(int step, const ReachedSet& final_set, const std::string& what) {
+    std::vector<ReachedPiece> outside = final_set.pieces_outside(goal_, kGoalRelativeTolerance * lt_.cspace.scale());
+    if (!outside.empty()) fail(step, what + " is not inside the goal", std::move(outside));
+  }
+
+  void simulate_node(int node_id, const ReachedSet& start, int parent_step, int branch) {
+    const StrategyNode& node = strategy_.nodes[static_cast<std::size_t>(node_id)];
+    const Motion* motion = lt_.task.find_motion(node.motion);
+    if (!motion) throw TaskError(lt_.task.source_file, "motions", "no motion named '" + node.motion + "'");
+    VerifyStep step = simulate(lt_, cones_, *motion, start);
+    step.node = node_id;
+    step.parent = parent_step;
+    step.branch = branch;
+    const int index = static_cast<int>(out_.steps.size());
+    out_.node_step[static_cast<std::size_t>(node_id)] = index;
+    out_.steps.push_back(std::move(step));
+    const VerifyStep& s = out_.steps.back();
+    if (s.may_not_terminate) {
+      fail(index, "motion '" + motion->name + "' may never terminate: no reached atom can stick" +
+                      (motion->terminate.any() ? " and no reached point is consistent with its termination sets"
+                                               : ""));
+      return;
+    }
+    if (s.free_termination) {
+      // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either way.
+      fail(index, "motion '" + motion->name + "' may come to rest in free space near its commanded position");
+      return;
+    }
+    const ReachedSet termination = s.termination;  // `s` moves when steps grow
+    if (node.next >= 0)
+      simulate_node(node.next, termination, index, -1);
+    else if (!node.branches.empty())
+      decide(index, node, termination);
+    else
+      check_goal(index, termination, "termination of motion '" + motion->name + "'");
+  }
+
+  // Buckley §4.2 conditional test after step `index` with termination set r.
+  void decide(int index, const StrategyNode& node, const ReachedSet& r) {
+    ReachedSet remaining = r;  // points no earlier test surely takes
+    bool has_else = false;
+    for (std::size_t i = 0; i < node.branches.size(); ++i) {
+      const StrategyBranch& b = node.branches[i];
+      ReachedSet start = b.otherwise ? remaining : weakly_consistent(lt_, cones_, b.when, remaining);
+      if (b.otherwise) {
+        has_else = true;
+        remaining = ReachedSet(lt_.cspace);
+      } else {
+        remaining = without_strongly_consistent(lt_, cones_, b.when, remaining);
+      }
+      auto shared = std::make_shared<const ReachedSet>(std::move(start));
+      out_.steps[static_cast<std::size_t>(index)].branches.push_back({shared, -1});
+      if (shared->empty()) continue;  // this branch cannot be taken
+      const std::string label = "branch " + std::to_string(i) + " (" + b.key + ") after motion '" + node.motion + "'";
+      if (b.first < 0) {
+        check_goal(index, *shared, "the start of " + label + ", which stops there,");
+        continue;
+      }
+      out_.steps[static_cast<std::size_t>(index)].branches[i].step = static_cast<int>(out_.steps.size());
+      simulate_node(b.first, *shared, index, static_cast<int>(i));
+    }
+    if (!has_else) {
+      auto unmatched = std::make_shared<const ReachedSet>(std::move(remaining));
+      out_.steps[static_cast<std::size_t>(index)].unmatched = unmatched;
+      if (!unmatched->empty())
+        fail(index, "a termination point of motion '" + node.motion + "' may pass no branch test (no 'else')",
+             unmatched->pieces());
+    }
+  }
+
+  const LoadedTask& lt_;
+  const Strategy& strategy_;
+  const AtomCones cones_;
+  const ReachedSet goal_;
+  VerifyResult out_;
+};
+
+}  // namespace
 
 VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names) {
-  std::vector<const Motion*> motions;
-  for (const std::string& name : names) {
-    const Motion* m = lt.task.find_motion(name);
-    if (!m) throw TaskError(lt.task.source_file, "motions", "no motion named '" + name + "'");
-    motions.push_back(m);
-  }
-  VerifyResult out;
-  const AtomCones cones(lt.cspace);
-  ReachedSet current = ReachedSet::from_region(lt, lt.task.start);
-  for (std::size_t i = 0; i < motions.size(); ++i) {
-    VerifyStep step{motions[i]->name, ReachedSet(lt.cspace)};
-    if (motions[i]->kind == Motion::Kind::kSpring) {
-      SpringProjection p = forward_project_spring(lt, current, motions[i]->target);
-      step.termination = std::move(p.termination);
-      step.may_not_terminate = p.may_not_terminate;
-      step.fallback = p.fallback;
-      step.fixpoint_steps = p.steps;
-      step.reached_area = p.reached.area();
-      step.free_termination = p.free_termination;
-      step.free_center = p.free_center;
-      step.free_radius = p.free_radius;
-      step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
-    } else {
-      DamperProjection p = forward_project_damper(lt, cones, current, motions[i]->target);
-      step.termination = std::move(p.termination);
-      step.may_not_terminate = p.may_not_terminate;
-      step.fallback = p.fallback;
-      step.fixpoint_steps = p.steps;
-      step.reached_area = p.reached.area();
-      step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
-    }
-    if (motions[i]->terminate.any()) {
-      // §4.5: the weakly consistent reached points join the weak sticking points (Alg 4.1 step 4). A motion
-      // that can stop by sensing somewhere may terminate even where nothing sticks.
-      auto sensed =
-          std::make_shared<const ReachedSet>(sensing_termination(lt, cones, *motions[i], *step.reached));
-      step.termination.unite(*sensed);
-      step.may_not_terminate = step.may_not_terminate && sensed->empty();
-      step.sensing = std::move(sensed);
-    }
-    out.steps.push_back(step);
-    if (step.may_not_terminate) {
-      out.failed_step = static_cast<int>(i);
-      out.failure =
-          "motion '" + motions[i]->name + "' may never terminate: no reached atom can stick" +
-          (motions[i]->terminate.any() ? " and no reached point is consistent with its termination sets"
-                                       : "");
-      return out;
-    }
-    if (step.free_termination) {
-      // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either
-      // way.
-      out.failed_step = static_cast<int>(i);
-      out.failure =
-          "motion '" + motions[i]->name + "' may come to rest in free space near its commanded position";
-      return out;
-    }
-    current = out.steps.back().termination;
-  }
-  if (out.steps.empty()) {
-    out.failure = "empty strategy";
-    return out;
-  }
-  const ReachedSet goal = ReachedSet::from_regions(lt, lt.task.goal);
-  out.outside_goal = current.pieces_outside(goal, kGoalRelativeTolerance * lt.cspace.scale());
-  out.reliable = out.outside_goal.empty();
-  if (!out.reliable) {
-    out.failed_step = static_cast<int>(out.steps.size()) - 1;
-    out.failure = "termination of motion '" + out.steps.back().motion + "' is not inside the goal";
-  }
-  return out;
+  for (const std::string& name : names)
+    if (!lt.task.find_motion(name)) throw TaskError(lt.task.source_file, "motions", "no motion named '" + name + "'");
+  return verify_strategy(lt, Strategy::sequence("", names));
 }
 
 VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy) {
-  return verify_motions(lt, strategy.motions);
+  return StrategyVerifier(lt, strategy).run();
 }
 
 }  // namespace cmt

@@ -1,6 +1,10 @@
-// Verification of a decision-free strategy (Buckley §4.2): chain the motions' simulations (the termination
-// set of one motion is the start of the next) and check that the final termination set lies in the goal.
-// Generalized-damper and generalized-spring motions are simulated.
+// Verification of a strategy (Buckley §4.2): chain the motions' simulations (the termination set of one
+// motion is the start of the next) and check that every final termination set lies in the goal. At a
+// conditional test after a motion with termination set R (Fig 4.2), branch i is simulated from the points of
+// R where some sensor reading may pass test i and no earlier test surely passes (Def 4.1/4.2 under eps_s and
+// theta_f; Buckley's R ∩ I_i); without an `else` branch every point of R must surely pass some test
+// (Buckley's R ⊆ I_1 ∪ I_2). A branch whose list is empty ends the strategy, so its start set must lie in the
+// goal. Generalized-damper and generalized-spring motions are simulated.
 #pragma once
 
 #include <memory>
@@ -24,9 +28,18 @@ class UnsupportedMotion : public std::runtime_error {
   std::string motion_;
 };
 
+// The conditional test after a step (Buckley §4.2): per branch of the strategy node, the set it starts from.
+struct VerifyBranch {
+  std::shared_ptr<const ReachedSet> start;  // empty: the branch cannot be taken
+  int step = -1;                            // the step simulated first on it, -1 if none (empty or a stop)
+};
+
 struct VerifyStep {
   std::string motion;
   ReachedSet termination;
+  int node = -1;    // the strategy node (models/task.h StrategyNode) this step simulates
+  int parent = -1;  // index of the step before it in `steps`, -1 for the first
+  int branch = -1;  // which branch of the parent's test leads here, -1 when it follows unconditionally
   bool may_not_terminate = false;  // no reached atom can stick
   bool fallback = false;           // the fixpoint fell back to "everything reached"
   int fixpoint_steps = 0;
@@ -41,14 +54,28 @@ struct VerifyStep {
   // Motions with termination sets (Buckley §4.5): the reached points where sensing may stop the motion
   // (verifier/sensing_termination.h), already united into `termination`; nullptr without termination sets.
   std::shared_ptr<const ReachedSet> sensing = nullptr;
+  // The conditional test after this step (empty without one), and the termination points that may pass no
+  // test when there is no `else` branch (nullptr otherwise).
+  std::vector<VerifyBranch> branches = {};
+  std::shared_ptr<const ReachedSet> unmatched = nullptr;
 };
 
+// Steps are in simulation order (depth first, branches in file order); for a decision-free strategy step i
+// is motion i. After a failure on one path its sibling branches are still simulated (so every reachable
+// node has its prediction); the first failure is the one reported.
 struct VerifyResult {
   bool reliable = false;
   std::vector<VerifyStep> steps;
   int failed_step = -1;                    // index into steps, or -1
   std::string failure;                     // why, when unreliable
-  std::vector<ReachedPiece> outside_goal;  // offending termination pieces of the failed step
+  std::vector<ReachedPiece> outside_goal;  // offending pieces of the failed step (outside the goal, or no test)
+  // Index into steps of each strategy node's simulation, -1 where a node was not simulated.
+  std::vector<int> node_step;
+  const VerifyStep* step_of_node(int node) const {
+    return node >= 0 && node < static_cast<int>(node_step.size()) && node_step[node] >= 0
+               ? &steps[static_cast<std::size_t>(node_step[node])]
+               : nullptr;
+  }
 };
 
 // Containment tolerance for 1-D and 0-D termination pieces (segments and points on faces, edge intervals,
@@ -56,6 +83,7 @@ struct VerifyResult {
 // regions are compared exactly.
 inline constexpr double kGoalRelativeTolerance = 1e-6;
 
+// A decision-free sequence (Strategy::sequence); motion names are checked (TaskError).
 VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions);
 VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy);
 
