@@ -163,7 +163,7 @@ double RolloutScene::timestep() const { return model_->get()->opt.timestep; }
 
 double RolloutScene::timeout(const Motion& motion, const Vec3& from) const {
   if (motion.kind == Motion::Kind::kDamper)
-    return options_.damper_timeout_scales * task_->cspace.scale() / params_.damper_speed;
+    return options_.damper_timeout_scales * task_->cspace.scale() / (kStopRelativeSpeed * params_.damper_speed);
   const double distance = (motion.target - from).norm();
   const double reach = distance + task_->cspace.scale();
   if (options_.form == ControllerForm::kPosition) {

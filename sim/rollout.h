@@ -68,7 +68,9 @@ struct SimOptions {
   // factor by which the top speed scales the drive down (a target deep below a surface presses hard and
   // slides slowly), so the time constant is max(1 / lambda, (|x_c - x0| + scale) / v_max). N = 10: the
   // sticking rule fires after ln(1 / kStopRelativeSpeed) = 4.6 of them, so a spring that is still moving
-  // after 10 never stops. Damper: 3 scene lengths at the commanded speed. Position form: 3x its via-point
+  // after 10 never stops. Damper: 3 scene lengths at kStopRelativeSpeed x the commanded speed, the slowest
+  // speed the sticking rule does not count as stopped (a damper slides at any speed down to that near the
+  // friction cone's rim, and still reaches the end of its face in Buckley's model). Position form: 3x its via-point
   // plan plus N / g.
   double spring_timeout_time_constants = 10;
   double damper_timeout_scales = 3;

@@ -71,7 +71,8 @@ class ReachedSet {
   // This set less the part inside the closed axis box, never removing more than that part (the dual of
   // within_box, for the points that surely pass a sensing test, Buckley Def 4.2): face regions exactly
   // (regularized difference, so the box's boundary stays in), face segments and points exactly; edge
-  // intervals lose only the box's interval shrunk by kEdgeParamSlack at both ends; vertices are removed by a
+  // intervals lose only the box's interval shrunk by kEdgeParamSlack where it cuts the edge (not at an edge
+  // end inside the box); vertices are removed by a
   // double comparison, so callers pass a box already shrunk by a margin above rounding.
   ReachedSet without_box(const AxisBox& box) const;
 

@@ -154,9 +154,11 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
     const Edge& e = c.edges()[ei];
     double b0 = 0, b1 = 0;
     const bool cut = box_interval(box, e.a, e.b, &b0, &b1);
-    // The removed interval, shrunk: what is removed is surely inside the box.
-    b0 += kEdgeParamSlack;
-    b1 -= kEdgeParamSlack;
+    // The removed interval, shrunk where it cuts the edge (a rounded parameter): what is removed is surely
+    // inside the box. An end of the edge inside the box (0 or 1, decided on the same double point as the
+    // vertex below) is not shrunk, so an edge inside the box goes whole.
+    if (b0 > 0) b0 += kEdgeParamSlack;
+    if (b1 < 1) b1 -= kEdgeParamSlack;
     for (const EdgeInterval& iv : in.edges[ei]) {
       if (!cut || b0 >= b1 || iv.t1 < b0 || iv.t0 > b1) {
         o.add_interval(static_cast<int>(ei), iv.t0, iv.t1, nullptr);
