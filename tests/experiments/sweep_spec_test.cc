@@ -65,7 +65,7 @@ TEST(SweepSpec, StructuralErrorsNameFileKeyAndReason) {
   expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    stratgies: [down]\n",
                "tasks[0].stratgies", "unknown key");
   expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    strategies: [down, teach]\n",
-               "tasks[0].strategies[1]", "unknown strategy 'teach' (the task has: down, slide)");
+               "tasks[0].strategies[1]", "unknown strategy 'teach' (the task has: down, slide, tilt, probe)");
   expect_error(two_blocks_spec("    grid:\n      mu: [0.2]\n"), "tasks[0].grid.mu", "unknown key");
   expect_error(two_blocks_spec("    grid:\n      friction: []\n"), "tasks[0].grid.friction",
                "the list is empty");
@@ -86,7 +86,7 @@ TEST(SweepSpec, OverridesThatBreakTheTaskNameTheSpecKey) {
   expect_error(two_blocks_spec("    grid:\n      motions:\n        v1: [[0, -1]]\n"),
                "tasks[0].grid.motions.v1[0]", "expected 3 numbers, got 2");
   expect_error(two_blocks_spec("    grid:\n      motions:\n        v9: [[0, 0, -1]]\n"),
-               "tasks[0].grid.motions.v9", "the task has no motion 'v9' (it has: v1, v2)");
+               "tasks[0].grid.motions.v9", "the task has no motion 'v9' (it has: v1, v2, v3)");
   // Random ranges: both ends must be valid.
   expect_error(two_blocks_spec(
                    "    random:\n      count: 3\n      seed: 1\n      ranges:\n        theta_v: [0.1, 2]\n"),
@@ -153,7 +153,7 @@ TEST(SweepSpec, GridExpandsInDocumentedOrder) {
   EXPECT_EQ(t.uncertainty.theta_v, 0.24);
   EXPECT_EQ(t.uncertainty.eps_s, 0.2);
   EXPECT_EQ(t.uncertainty.theta_f, 0.3);
-  EXPECT_EQ(t.motions.size(), 2u);
+  EXPECT_EQ(t.motions.size(), 3u);  // two_blocks: v1, v2, v3
   // Same spec, same keys: a rerun recognises its units.
   const std::vector<SweepUnit> again = expand_units(spec);
   for (std::size_t i = 0; i < units.size(); ++i) EXPECT_EQ(again[i].unit_key, units[i].unit_key);

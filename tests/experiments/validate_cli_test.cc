@@ -100,6 +100,57 @@ TEST(CmtValidate, TwoBlocksDownReportsACounterexampleThatReplays) {
   EXPECT_EQ(replayed["end"], cx["end"]);  // bit for bit: the same seed and index
 }
 
+TEST(CmtValidate, TwoBlocksConditionalProbeIsSoundOnEveryBranch) {
+  // `tilt` (v3 alone) may stick on B's top: unreliable, and a failing rollout replays. `probe` senses after
+  // v3 and runs v2 only outside the gap (docs/verifier.md "Conditional strategies"): reliable, every rollout
+  // succeeds, and every motion end, on either branch, lies in the prediction for its strategy node.
+  const Result tilt =
+      run("validate " + task("two_blocks") + " --strategy tilt -n 40 --seed 1 --threads 2 --json");
+  ASSERT_EQ(tilt.status, 0) << tilt.out;
+  const json t = json::parse(tilt.out);
+  EXPECT_FALSE(t["reliable"].get<bool>());
+  EXPECT_EQ(t["outside"], 0);
+  ASSERT_FALSE(t["counterexample"].is_null());
+  EXPECT_FALSE(replay(t["counterexample"]["replay"].get<std::string>())["success"].get<bool>());
+
+  const Result r =
+      run("validate " + task("two_blocks") + " --strategy probe -n 40 --seed 1 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["reliable"].get<bool>());
+  EXPECT_EQ(j["successes"], 40);
+  EXPECT_EQ(j["outside"], 0);
+  EXPECT_EQ(j["unpredicted"], 0);
+  EXPECT_DOUBLE_EQ(j["soundness"].get<double>(), 1.0);
+  EXPECT_FALSE(j["soundness_bug"].get<bool>());
+  // One end per v3, one more per rollout that took the else branch: ends_checked = 40 + (else count), with
+  // both branches taken.
+  const int checked = j["ends_checked"].get<int>();
+  EXPECT_GT(checked, 40);
+  EXPECT_LT(checked, 80);
+
+  // The verifier's tree in `cmt verify`: step 0 = v3 (node 0) with two branches, branch 0 a reachable stop,
+  // branch 1 leading to step 1 = v2 (node 1).
+  const Result v = run("verify " + task("two_blocks") + " --strategy probe --json");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const json p = json::parse(v.out);
+  ASSERT_EQ(p["steps"].size(), 2u);
+  const json& s0 = p["steps"][0];
+  EXPECT_EQ(s0["motion"], "v3");
+  EXPECT_EQ(s0["node"], 0);
+  EXPECT_EQ(s0["parent"], -1);
+  ASSERT_EQ(s0["branches"].size(), 2u);
+  EXPECT_TRUE(s0["branches"][0]["reachable"].get<bool>());
+  EXPECT_EQ(s0["branches"][0]["step"], -1);
+  EXPECT_EQ(s0["branches"][1]["step"], 1);
+  EXPECT_FALSE(s0.contains("unmatched"));  // it has an else branch
+  const json& s1 = p["steps"][1];
+  EXPECT_EQ(s1["motion"], "v2");
+  EXPECT_EQ(s1["node"], 1);
+  EXPECT_EQ(s1["parent"], 0);
+  EXPECT_EQ(s1["branch"], 1);
+}
+
 // A block [-1,1]^2 x [0,1] on a floor; the goal is its top, the robot is pushed straight down from `start`
 // (on the top). With theta_v > atan .25 = .2450 the verifier must say the robot may slide off the top onto
 // the floor (outside the goal): unreliable.
