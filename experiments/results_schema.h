@@ -44,7 +44,9 @@ CREATE TABLE predictions(
 CREATE TABLE rollouts(
   config_id INTEGER,
   rollout INTEGER,
-  motion INTEGER,
+  motion INTEGER,                   -- the prediction step scoring it (verify_json steps; = the motion's
+                                    -- index in a decision-free strategy; steps + its position in the
+                                    -- rollout when nothing predicts it), -1: a rollout row without motions
   start_x REAL, start_y REAL, start_z REAL,
   end_x REAL, end_y REAL, end_z REAL,
   atom INTEGER,

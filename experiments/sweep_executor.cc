@@ -45,7 +45,7 @@ UnitRecord unit_record(const LoadedTask& task, const ValidationResult& v) {
     for (std::size_t i = 0; i < ro.motions.size(); ++i) {
       const MotionOutcome& m = ro.motions[i];
       RolloutRow row = base;
-      row.motion = static_cast<int>(i);
+      row.motion = motion_key(v.prediction.steps, m, static_cast<int>(i));
       row.start = xyz(i == 0 ? ro.start : ro.motions[i - 1].end);
       row.end = xyz(m.end);
       row.atom = m.atom;

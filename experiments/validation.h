@@ -65,8 +65,8 @@ struct ValidateOptions {
 // One observed motion end (every motion of every rollout, not only the last).
 struct ObservedEnd {
   int rollout = 0;  // rollout index
-  // The prediction's step for this motion (VerifyResult::steps; = the motion's index in a decision-free
-  // strategy), or the motion's index in the rollout when the verifier predicted nothing for it.
+  // motion_key: the prediction's step for this motion (VerifyResult::steps; = the motion's index in a
+  // decision-free strategy), or steps.size() + its index in the rollout when nothing predicts it.
   int motion = 0;
   std::string motion_name;
   Vec3 end = Vec3::Zero();
@@ -144,7 +144,14 @@ struct ValidationResult {
 // Distance from p to a step's predicted termination set: the reached set and, for a spring with
 // free_termination, the free-space rest ball.
 double distance_to_prediction(const VerifyStep& step, const Vec3& p);
-// One rollout's motion ends against the prediction (steps[i] predicts motion i), with the contact tolerance:
+// The index of the step in `steps` that predicts a rollout's motion: the one that simulated its strategy
+// node (conditional strategies, Buckley §4.2); motions and steps built without nodes pair by position. -1 when
+// the verifier simulated nothing for it.
+int prediction_step(const std::vector<VerifyStep>& steps, const MotionOutcome& motion, int position);
+// ObservedEnd::motion and the results store's rollouts.motion: prediction_step, or steps.size() + position
+// when nothing predicts the motion (unique within a rollout, since a rollout runs each node at most once).
+int motion_key(const std::vector<VerifyStep>& steps, const MotionOutcome& motion, int position);
+// One rollout's motion ends against the prediction (prediction_step pairs them), with the contact tolerance:
 // terminated ends of predicted motions go to `ends`, time-outs to `timeouts` (and to `unexpected_timeouts`
 // when the step said may_not_terminate = false); terminated ends after the last step count in `unpredicted`.
 // The rollout ran under (seed, mode).

@@ -13,6 +13,18 @@ double distance_to_prediction(const VerifyStep& step, const Vec3& p) {
   return d;
 }
 
+int prediction_step(const std::vector<VerifyStep>& steps, const MotionOutcome& motion, int position) {
+  const int node = motion.node >= 0 ? motion.node : position;
+  for (std::size_t k = 0; k < steps.size(); ++k)
+    if ((steps[k].node >= 0 ? steps[k].node : static_cast<int>(k)) == node) return static_cast<int>(k);
+  return -1;
+}
+
+int motion_key(const std::vector<VerifyStep>& steps, const MotionOutcome& motion, int position) {
+  const int step = prediction_step(steps, motion, position);
+  return step >= 0 ? step : static_cast<int>(steps.size()) + position;
+}
+
 void observe_rollout(const std::vector<VerifyStep>& steps, const RolloutOutcome& ro, std::uint64_t seed,
                      SampleMode mode, double tolerance, std::vector<ObservedEnd>* ends,
                      std::vector<ObservedEnd>* timeouts, std::vector<ObservedEnd>* unexpected_timeouts,
@@ -21,13 +33,8 @@ void observe_rollout(const std::vector<VerifyStep>& steps, const RolloutOutcome&
     const MotionOutcome& m = ro.motions[mi];
     ObservedEnd e;
     e.rollout = ro.index;
-    // The prediction for this motion: the step that simulated its strategy node (conditional strategies,
-    // Buckley §4.2); outcomes and steps built without nodes pair by position.
-    const int node = m.node >= 0 ? m.node : static_cast<int>(mi);
-    int step_index = -1;
-    for (std::size_t k = 0; k < steps.size(); ++k)
-      if ((steps[k].node >= 0 ? steps[k].node : static_cast<int>(k)) == node) step_index = static_cast<int>(k);
-    e.motion = step_index >= 0 ? step_index : static_cast<int>(mi);
+    const int step_index = prediction_step(steps, m, static_cast<int>(mi));
+    e.motion = motion_key(steps, m, static_cast<int>(mi));
     e.motion_name = m.motion;
     e.end = m.end;
     e.atom = m.atom;
