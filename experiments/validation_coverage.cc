@@ -17,14 +17,40 @@ bool near_an_end(const Vec3& p, const std::vector<Vec3>& ends, double r) {
   return std::any_of(ends.begin(), ends.end(), [&](const Vec3& e) { return (e - p).squaredNorm() <= r2; });
 }
 
-StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, const std::vector<Vec3>& ends,
+// Planar tasks (dimension 2) are extruded across a y slab whose walls are phantoms (models/task_loader.h), so
+// a piece is measured by its trace in the x-z plane: a face region (a band across the slab) is the segment
+// between its two farthest points, an edge interval across the slab (a 2-D vertex) or a segment along y is a
+// point. Ends are taken at y = 0 too (planar rollouts stay there).
+std::vector<ReachedPiece> in_plane(std::vector<ReachedPiece> pieces) {
+  // Below this (task units) a projected segment is a point: the slab's own coordinates are exact doubles.
+  constexpr double kSame = 1e-12;
+  for (ReachedPiece& p : pieces) {
+    for (Vec3& q : p.polygon) q.y() = 0;
+    p.holes.clear();
+    p.area = 0;
+    std::size_t a = 0, b = 0;
+    for (std::size_t i = 0; i < p.polygon.size(); ++i)
+      for (std::size_t j = i + 1; j < p.polygon.size(); ++j)
+        if ((p.polygon[i] - p.polygon[j]).norm() > (p.polygon[a] - p.polygon[b]).norm()) a = i, b = j;
+    p.polygon = (p.polygon[a] - p.polygon[b]).norm() > kSame ? std::vector<Vec3>{p.polygon[a], p.polygon[b]}
+                                                             : std::vector<Vec3>{p.polygon[a]};
+  }
+  return pieces;
+}
+
+StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::vector<Vec3> ends,
                           double contact_tolerance) {
   StepValidation s;
   s.motion = step.motion;
   s.ends = static_cast<int>(ends.size());
   double area = 0, length = 0;
   std::vector<ReachedPiece> regions, segments, points;
-  for (ReachedPiece& p : step.termination.pieces()) {
+  std::vector<ReachedPiece> pieces = step.termination.pieces();
+  if (task.task.dimension == 2) {
+    pieces = in_plane(std::move(pieces));
+    for (Vec3& e : ends) e.y() = 0;
+  }
+  for (ReachedPiece& p : pieces) {
     if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) {
       area += p.area;
       regions.push_back(std::move(p));

@@ -6,6 +6,7 @@
 
 #include "models/polygon_distance.h"
 #include "models/task_error.h"
+#include "models/task_loader.h"
 #include "verifier/internal/face_regions.h"
 
 namespace cmt {
@@ -487,7 +488,34 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
 
 // ---- locating task regions ----
 
-ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& region) {
+namespace {
+
+// A planar task (dimension 2) is its [x, z] scene extruded along y and clipped to the slab
+// |y| <= kPlanarClipHalfDepth (models/task_loader.h), whose y walls are phantoms: a planar point stands for the
+// contact points above it across the slab (a segment along y), a planar segment for a rectangle. Without this
+// a goal segment at y = 0 would not contain the slab-wide edge a planar motion sticks on.
+Region extruded_across_slab(const Region& r) {
+  const double h = kPlanarClipHalfDepth;
+  const auto at = [](Vec3 p, double y) {
+    p.y() = y;
+    return p;
+  };
+  Region out = r;
+  if (r.kind == Region::Kind::kPoint) {
+    out.kind = Region::Kind::kSegment;
+    out.points = {at(r.points[0], -h), at(r.points[0], h)};
+  } else if (r.kind == Region::Kind::kSegment) {
+    out.kind = Region::Kind::kPolygon;
+    out.points = {at(r.points[0], -h), at(r.points[1], -h), at(r.points[1], h), at(r.points[0], h)};
+  }
+  return out;
+}
+
+}  // namespace
+
+ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or_spatial) {
+  const Region region =
+      lt.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
   const CSpace& c = lt.cspace;
   const double tol = lt.surface_tolerance();
   ReachedSet rs(c);

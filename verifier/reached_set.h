@@ -41,8 +41,9 @@ class ReachedSet {
   // Locates a task region (start or goal) on the atoms it lies on, within LoadedTask::surface_tolerance():
   // a point goes to CSpace::nearest_atom; a segment or polygon is clipped (exactly, in the chart) to every
   // face whose plane holds it and, for a segment, to every edge whose line holds it. The closure is added
-  // (edge intervals and vertices covered by the face parts). Throws TaskError when a region sample is on no
-  // located piece.
+  // (edge intervals and vertices covered by the face parts). In a planar task a region stands for its
+  // extrusion across the y slab (a point becomes a segment along y, a segment a rectangle). Throws TaskError
+  // when a region sample is on no located piece.
   static ReachedSet from_region(const LoadedTask& task, const Region& region);
   static ReachedSet from_regions(const LoadedTask& task, const std::vector<Region>& regions);
 

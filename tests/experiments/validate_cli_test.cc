@@ -151,6 +151,25 @@ TEST(CmtValidate, TwoBlocksConditionalProbeIsSoundOnEveryBranch) {
   EXPECT_EQ(s1["branch"], 1);
 }
 
+TEST(CmtValidate, PlanarBlocksSlideIsSoundAndCoveredInThePlane) {
+  // planar_blocks (dimension 2): `slide` ends in the corner (-1.5, 0), a point in the plane (a line across
+  // the phantom slab in 3-D): every planar rollout reaches it, so coverage, measured in the plane, is 1.
+  const Result r =
+      run("validate " + task("planar_blocks") + " --strategy slide -n 60 --seed 1 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["reliable"].get<bool>());
+  EXPECT_EQ(j["successes"], 60);
+  EXPECT_EQ(j["outside"], 0);
+  EXPECT_DOUBLE_EQ(j["soundness"].get<double>(), 1.0);
+  ASSERT_EQ(j["steps"].size(), 1u);
+  EXPECT_EQ(j["steps"][0]["measure"], "points");
+  EXPECT_EQ(j["steps"][0]["predicted"], 1.0);
+  EXPECT_DOUBLE_EQ(j["coverage"].get<double>(), 1.0);
+  // Output in the plane: 2-vectors.
+  EXPECT_EQ(j["prediction"]["steps"][0]["termination"][0]["polygon"][0].size(), 2u);
+}
+
 // A block [-1,1]^2 x [0,1] on a floor; the goal is its top, the robot is pushed straight down from `start`
 // (on the top). With theta_v > atan .25 = .2450 the verifier must say the robot may slide off the top onto
 // the floor (outside the goal): unreliable.
