@@ -14,7 +14,10 @@ namespace cmt {
 
 // The soft-surface-layer scene (soft_layer_scene(), docs/mujoco-scene.md "Concave edges and the soft surface
 // layer"): it meets every calibration criterion of the velocity forms at concave edges, but is not the
-// default yet (an error-free slide's contact load differs by 3.5 % with gravity on vs off, unexplained).
+// default: the position form still creeps along a concave edge while its load grows (the compliant contact
+// sinks into one face, which is sliding along the other; docs/rollouts.md "The position form in concave
+// edges"), and its bouncing slides make rollout end points more sensitive to rounding (docs/rollouts.md
+// "Rollouts are chaotic at the 1e-3 in level").
 // Integration step, s. With the soft surface layer below, 0.5 ms left the admittance loop erratic in concave
 // edges (sliding 18 % off Coulomb there, 2.3 % on a face); at 0.25 ms every calibration criterion of the
 // velocity forms holds (docs/rollouts.md "Calibration"). Contacts have a time constant of 2 steps, so they
