@@ -73,6 +73,10 @@ struct MjcfOptions {
   // leaves between boxes that share a face (docs/mujoco-scene.md "Seams"). Off only for tests that show the
   // slots.
   bool close_seams = true;
+  // Seam contact filter (sim/seam_filter.h), as a fraction of the scene scale: > 0 writes the MJCF custom
+  // numeric that switches it on, with tolerance tau = this x scale (m). Off by default (the exporter's tests
+  // check raw box-box contacts); the rollouts set it (SimOptions::scene).
+  double seam_filter_relative = 0;
 };
 
 // The soft-surface-layer scene: kSoftLayer* on top of the defaults.
