@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -40,30 +41,37 @@ bool environment_box(const mjModel* m, int g) {
   return m->geom_bodyid[g] == 0 && m->geom_type[g] == mjGEOM_BOX && (m->geom_conaffinity[g] & 1);
 }
 
-// True if the contact at `pos`, on the face of environment box e with outward normal sign * axis `a`, lies
-// on a part of that face that another environment box covers. The probe is the point 2 tau outside the
-// face; it must lie inside the other box by more than tau, except across a face of the other box that is
-// coplanar with e's face on the same side (the real surface continuing over the seam), where the contact
-// point may lie within tau of it (it sits a penetration depth below that surface).
-bool on_internal_face(const mjModel* m, const mjData* d, int e, int a, int sign, const mjtNum* pos,
-                      double tau) {
-  double q[3] = {pos[0], pos[1], pos[2]};
-  q[a] = (sign > 0 ? hi(m, d, e, a) : lo(m, d, e, a)) + sign * 2 * tau;
+// True if the face of environment box e with outward normal sign * axis `a` is internal to the solid where
+// robot box r touches it: r moved 2 tau outward along that normal (out of e) still overlaps another
+// environment box n by more than tau along every axis, or, along an axis where n's overlap is bounded by a
+// face coplanar with e's face on the same side (the real surface continuing over the seam), by more than
+// -tau (r sits a penetration depth below that surface). Then n blocks the motion along the normal as much
+// as e does, n's own contact carries the load, and e's contact along `a` is a ghost.
+bool on_internal_face(const mjModel* m, const mjData* d, int e, int r, int a, int sign, double tau) {
+  double rlo[3], rhi[3];
+  for (int k = 0; k < 3; ++k) {
+    rlo[k] = lo(m, d, r, k);
+    rhi[k] = hi(m, d, r, k);
+  }
+  rlo[a] += sign * 2 * tau;
+  rhi[a] += sign * 2 * tau;
   for (int n = 0; n < m->ngeom; ++n) {
     if (n == e || !environment_box(m, n) || !axis_aligned(d, n)) continue;
-    bool inside = true;
-    for (int k = 0; k < 3 && inside; ++k) {
-      const double below = q[k] - lo(m, d, n, k), above = hi(m, d, n, k) - q[k];
-      if (k == a) {
-        inside = below > tau && above > tau;
+    bool blocks = true;
+    for (int k = 0; k < 3 && blocks; ++k) {
+      const double top = std::min(rhi[k], hi(m, d, n, k)), bottom = std::max(rlo[k], lo(m, d, n, k));
+      const double overlap = top - bottom;
+      if (overlap > tau) continue;
+      if (k == a || overlap <= -tau) {
+        blocks = false;
         continue;
       }
-      const bool low_coplanar = std::abs(lo(m, d, n, k) - lo(m, d, e, k)) <= tau;
-      const bool high_coplanar = std::abs(hi(m, d, n, k) - hi(m, d, e, k)) <= tau;
-      inside =
-          (below > tau || (low_coplanar && below > -tau)) && (above > tau || (high_coplanar && above > -tau));
+      // Small overlap: allowed only where it is bounded by n's face coplanar with e's on the same side.
+      const bool by_high = hi(m, d, n, k) <= rhi[k] && std::abs(hi(m, d, n, k) - hi(m, d, e, k)) <= tau;
+      const bool by_low = lo(m, d, n, k) >= rlo[k] && std::abs(lo(m, d, n, k) - lo(m, d, e, k)) <= tau;
+      blocks = by_high || by_low;
     }
-    if (inside) return true;
+    if (blocks) return true;
   }
   return false;
 }
@@ -76,7 +84,7 @@ int filtered_box_box(const mjModel* m, const mjData* d, mjContact* con, int g1, 
   const bool e_is_1 = environment_box(m, g1) && m->geom_bodyid[g2] != 0;
   const bool e_is_2 = environment_box(m, g2) && m->geom_bodyid[g1] != 0;
   if (e_is_1 == e_is_2) return count;  // not a robot-environment pair
-  const int e = e_is_1 ? g1 : g2;
+  const int e = e_is_1 ? g1 : g2, r = e_is_1 ? g2 : g1;
   if (!axis_aligned(d, g1) || !axis_aligned(d, g2)) return count;
   int kept = 0;
   for (int i = 0; i < count; ++i) {
@@ -86,7 +94,7 @@ int filtered_box_box(const mjModel* m, const mjData* d, mjContact* con, int g1, 
     int a = -1;
     for (int k = 0; k < 3; ++k)
       if (std::abs(out[k]) > 1 - 1e-9) a = k;
-    const bool drop = a >= 0 && on_internal_face(m, d, e, a, out[a] > 0 ? 1 : -1, con[i].pos, tau);
+    const bool drop = a >= 0 && on_internal_face(m, d, e, r, a, out[a] > 0 ? 1 : -1, tau);
     if (!drop) {
       if (kept != i) con[kept] = con[i];
       ++kept;

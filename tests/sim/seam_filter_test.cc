@@ -1,5 +1,6 @@
 // Seam contact filter (sim/seam_filter.h): a robot sliding across a physical seam between two environment
-// boxes is not stopped by the internal face of one of them, and the scenes without seams are unchanged.
+// boxes, or flush with a wall while resting on a coplanar neighbour, is not stopped by a ghost contact, and
+// a real concave edge is unchanged.
 #include "sim/seam_filter.h"
 
 #include <gtest/gtest.h>
@@ -49,6 +50,30 @@ TEST(SeamFilter, RobotSlidesAcrossAPhysicalSeamAsCoulombSays) {
   const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
   EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
   // The ghost contact without the filter: stuck.
+  options.scene.seam_filter_relative = 0;
+  const auto raw = RolloutScene::build(tslot, options);
+  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+}
+
+// tslot, C-space (-1, -2.43, 0) (check-sticking seed 7, trial 100): the crossbar [-3, 1] x [-3.43, -1.43]
+// rests on the front lip (y < -2) and hangs over the entry hole (y > -2) with its left end flush with the
+// hole's wall x = -3 of the left lip. It overlaps that wall by 8e-9 m, less than it has sunk into the lip top
+// (3.6e-8 m), so MuJoCo took the wall's normal (+x). In C-space the point lies on the flat top face (the
+// front lip's C-obstacle covers the left lip's face there), and moved 2 tau out of the wall the crossbar
+// still rests on the front lip, whose top is coplanar with the left lip's: the filter drops the wall contact.
+// Commanded at alpha = 0.521 rad (> phi = 0.448) toward -x, -y, Coulomb says it slides at V (sin alpha - mu
+// cos alpha) = 0.081 V.
+TEST(SeamFilter, RobotFlushWithAWallSlidesOnTheFaceItRestsOn) {
+  const auto tslot = builtin("tslot");
+  const Vec3 start(-1, -2.4291200376125888, 0);
+  const Vec3 dir(-0.24383383696211847, -0.4339940678248832, -0.8672913057589945);
+  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  const auto filtered = RolloutScene::build(tslot, options);
+  const double v = filtered->controller_params().damper_speed;
+  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
+  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
   options.scene.seam_filter_relative = 0;
   const auto raw = RolloutScene::build(tslot, options);
   EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
