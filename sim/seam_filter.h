@@ -1,9 +1,10 @@
-// Seam contact filter (docs/mujoco-scene.md "Seams and ghost contacts"). Where two environment boxes abut,
-// the face of one that the other covers is internal to the solid, but MuJoCo collides the robot with each box
-// separately: a robot box sliding across the seam overlaps the first box's internal face by a little and,
-// when that is less than its penetration below the real surface, gets a contact normal along the internal
-// face (a "ghost" contact) that stops it. The filter drops a box-box contact when the point just outside the
-// environment box's contact face lies inside another environment box, i.e. when the face is internal there.
+// Seam contact filter (docs/mujoco-scene.md "Seam contact filter"). Where two environment boxes abut, the
+// face of one that the other covers is internal to the solid, but MuJoCo collides the robot with each box
+// separately: a robot box sliding across the seam, or flush with a wall while resting on a coplanar
+// neighbour, overlaps that face by less than it has sunk below the real surface and gets a contact normal
+// along it (a "ghost" contact) that stops it. The filter drops a box-box contact on a face of environment box
+// E when the robot box, moved a little further out of E along the contact normal, still overlaps another
+// environment box (which then blocks that motion as E does: E's face is internal there).
 #pragma once
 
 namespace cmt {
