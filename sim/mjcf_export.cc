@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "models/task_loader.h"
+#include "sim/seam_filter.h"
 
 namespace cmt {
 
@@ -290,6 +291,10 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   const int pairs = robot_geoms * env_geoms + wall_geoms;
   const int nconmax = std::clamp(8 * pairs, 64, 256);
   out << "  <size nconmax=\"" << nconmax << "\" njmax=\"" << 3 * nconmax << "\"/>\n";
+
+  if (options.seam_filter_relative > 0)
+    out << "  <custom>\n    <numeric name=\"" << kSeamFilterNumeric << "\" data=\""
+        << num(options.seam_filter_relative * scale * s) << "\"/>\n  </custom>\n";
 
   out << "  <default>\n"
       << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp_dmin)

@@ -14,7 +14,10 @@ namespace cmt {
 
 // The soft-surface-layer scene (soft_layer_scene(), docs/mujoco-scene.md "Concave edges and the soft surface
 // layer"): it meets every calibration criterion of the velocity forms at concave edges, but is not the
-// default yet (an error-free slide's contact load differs by 3.5 % with gravity on vs off, unexplained).
+// default: the position form still creeps along a concave edge while its load grows (the compliant contact
+// sinks into one face, which is sliding along the other; docs/rollouts.md "The position form in concave
+// edges"), and its bouncing slides make rollout end points more sensitive to rounding (docs/rollouts.md
+// "Rollouts are chaotic at the 1e-3 in level").
 // Integration step, s. With the soft surface layer below, 0.5 ms left the admittance loop erratic in concave
 // edges (sliding 18 % off Coulomb there, 2.3 % on a face); at 0.25 ms every calibration criterion of the
 // velocity forms holds (docs/rollouts.md "Calibration"). Contacts have a time constant of 2 steps, so they
@@ -70,6 +73,10 @@ struct MjcfOptions {
   // leaves between boxes that share a face (docs/mujoco-scene.md "Seams"). Off only for tests that show the
   // slots.
   bool close_seams = true;
+  // Seam contact filter (sim/seam_filter.h), as a fraction of the scene scale: > 0 writes the MJCF custom
+  // numeric that switches it on, with tolerance tau = this x scale (m). Off by default (the exporter's tests
+  // check raw box-box contacts); the rollouts set it (SimOptions::scene).
+  double seam_filter_relative = 0;
 };
 
 // The soft-surface-layer scene: kSoftLayer* on top of the defaults.

@@ -22,6 +22,7 @@
 
 #include "models/polygon_distance.h"
 #include "sim/mujoco_guard.h"
+#include "sim/seam_filter.h"
 
 namespace cmt {
 
@@ -129,6 +130,7 @@ std::shared_ptr<const RolloutScene> RolloutScene::build(std::shared_ptr<const Lo
 }
 
 void RolloutScene::init() {
+  install_seam_contact_filter();  // acts only on models whose scene asks for it (seam_filter_relative)
   const mjModel* m = model_->get();
   static const char* const kJoints[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {

@@ -43,9 +43,12 @@ struct SimOptions {
   // penetration of a body sliding at 1 in/s from 6.9e-6 m to at most 6.3e-6 m (4.4e-6 m without force
   // feedback) and face sliding speeds within 1.4 % of Coulomb (at 1 ms the worst was 2.1 %), for twice the
   // steps (calibrate-friction, docs/rollouts.md).
+  // Seam contacts are filtered (sim/seam_filter.h) with tau = the unstable penetration (below): every contact
+  // of a stable rollout is shallower than that, and every feature of the built-in tasks is far wider.
   MjcfOptions scene = [] {
     MjcfOptions o;
     o.timestep = 0.0005;
+    o.seam_filter_relative = kUnstablePenetrationRelative;
     return o;
   }();
   // Spring rate lambda (1/s): time constant 0.25 s = 25 servo time constants, so the robot is first order on

@@ -1,0 +1,99 @@
+// Seam contact filter (sim/seam_filter.h): a robot sliding across a physical seam between two environment
+// boxes, or flush with a wall while resting on a coplanar neighbour, is not stopped by a ghost contact, and
+// a real concave edge is unchanged.
+#include "sim/seam_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "models/loaded_task.h"
+#include "sim/calibration.h"
+#include "sim/rollout.h"
+
+namespace cmt {
+namespace {
+
+std::shared_ptr<const LoadedTask> builtin(const std::string& name) {
+  return load_task(std::filesystem::path(CMT_SOURCE_DIR) / "models" / "tasks" / (name + ".yaml"));
+}
+
+// Mean speed along the top face (x-y) over the second half of a 0.16 s damper drive from rest.
+double face_speed(const std::shared_ptr<const RolloutScene>& scene, const Vec3& start, const Vec3& dir) {
+  RolloutRunner runner(scene);
+  const Motion m{"slide", Motion::Kind::kDamper, dir, {}};
+  Vec3 mid = start, end = start;
+  runner.drive(start, m, 0.16, [&](const StepState& s) {
+    if (s.time <= 0.08 + 1e-9) mid = s.position;
+    end = s.position;
+  });
+  return (end - mid).head<2>().norm() / 0.08;
+}
+
+// tslot (physical form): the crossbar [x - 2, x + 2] x [y - 1, y + 1] on the lip at C-space (1, -3.35, 0) has
+// its right end exactly on the seam x = 3 between the front lip [-3, 3] x [-8, -2] and the right lip [3, 8] x
+// [-8, 8] (the whole crossbar lies at y < -2, where the front lip covers the right lip's face x = 3).
+// Commanded at alpha = 0.717 rad from the face normal (phi = atan .48 = 0.448) toward +x, -y, Coulomb says it
+// slides at V (sin alpha - mu cos alpha). `cmt check-sticking` (seed 7, trial 700) found it stuck: MuJoCo put
+// a contact with normal -x on the right lip's internal face x = 3, because the crossbar overlapped it by less
+// than it had sunk into the lip.
+TEST(SeamFilter, RobotSlidesAcrossAPhysicalSeamAsCoulombSays) {
+  const auto tslot = builtin("tslot");
+  const Vec3 start(1, -3.3456529039197758, 0);
+  const Vec3 dir(0.583184829559215, -0.30321768744108485, -0.7536275529695486);
+  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));  // from the inward normal -z
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  const auto filtered = RolloutScene::build(tslot, options);
+  const double v = filtered->controller_params().damper_speed;
+  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
+  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
+  // The ghost contact without the filter: stuck.
+  options.scene.seam_filter_relative = 0;
+  const auto raw = RolloutScene::build(tslot, options);
+  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+}
+
+// tslot, C-space (-1, -2.43, 0) (check-sticking seed 7, trial 100): the crossbar [-3, 1] x [-3.43, -1.43]
+// rests on the front lip (y < -2) and hangs over the entry hole (y > -2) with its left end flush with the
+// hole's wall x = -3 of the left lip. It overlaps that wall by 8e-9 m, less than it has sunk into the lip top
+// (3.6e-8 m), so MuJoCo took the wall's normal (+x). In C-space the point lies on the flat top face (the
+// front lip's C-obstacle covers the left lip's face there), and moved 2 tau out of the wall the crossbar
+// still rests on the front lip, whose top is coplanar with the left lip's: the filter drops the wall contact.
+// Commanded at alpha = 0.521 rad (> phi = 0.448) toward -x, -y, Coulomb says it slides at V (sin alpha - mu
+// cos alpha) = 0.081 V.
+TEST(SeamFilter, RobotFlushWithAWallSlidesOnTheFaceItRestsOn) {
+  const auto tslot = builtin("tslot");
+  const Vec3 start(-1, -2.4291200376125888, 0);
+  const Vec3 dir(-0.24383383696211847, -0.4339940678248832, -0.8672913057589945);
+  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  const auto filtered = RolloutScene::build(tslot, options);
+  const double v = filtered->controller_params().damper_speed;
+  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
+  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
+  options.scene.seam_filter_relative = 0;
+  const auto raw = RolloutScene::build(tslot, options);
+  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+}
+
+// Where no face is internal the filter drops nothing: the calibration's floor and wall (whose concave edge is
+// a real one: the floor contacts in the corner lie a penetration depth inside the wall's footprint) give the
+// same numbers, bit for bit, with and without it.
+TEST(SeamFilter, ChangesNothingAtARealConcaveEdge) {
+  MjcfOptions with = SimOptions{}.scene, without = with;
+  ASSERT_GT(with.seam_filter_relative, 0);
+  without.seam_filter_relative = 0;
+  const CalibrationResult a = calibrate_friction({ControllerForm::kImpedance}, with);
+  const CalibrationResult b = calibrate_friction({ControllerForm::kImpedance}, without);
+  ASSERT_EQ(a.cases.size(), b.cases.size());
+  for (std::size_t i = 0; i < a.cases.size(); ++i) {
+    EXPECT_EQ(a.cases[i].speed, b.cases[i].speed) << i;
+    EXPECT_EQ(a.cases[i].max_penetration, b.cases[i].max_penetration) << i;
+  }
+}
+
+}  // namespace
+}  // namespace cmt
