@@ -14,6 +14,10 @@ inline constexpr int kSpringDiskSides = 24;
 inline constexpr int kSpringSlabLayers = 4;
 // Relative slack on every radius and projected direction built with floating-point arithmetic.
 inline constexpr double kSpringRelativeSlack = 1e-9;
+// Outward rounding of the grown polygons (minkowski_outward in spring_flight.cc): their vertices become
+// doubles, with every exact point's interval enclosure grown by this fraction of (1 + the largest coordinate)
+// to cover the rounding of the double sums (at most 2^-53 of it, so 1e-12 leaves a factor 4500).
+inline constexpr double kSpringRoundingSlack = 1e-12;
 // Below this cosine the overshoot directions are not bounded by a cap: a polytope about the whole eps_o ball
 // about p is used instead.
 inline constexpr double kSpringMinCapCosine = 0.1;
