@@ -1,6 +1,8 @@
 // Generalized-damper forward projection (verifier/forward_projection.h) on two_blocks (Buckley Fig 4.1) and
 // on synthetic scenes: a k x k grid of unit C-space boxes on a floor (k = 1, 4, 13: 14, ~110, ~1000 faces).
-// Ratios against the same run's baseline: building the scene's C-space (BM_BuildCSpace/k).
+// Ratios against the same run's baseline: building the scene's C-space (BM_BuildCSpace/k). And the whole
+// verification of the hole task's taught strategy (two spring motions, Buckley §5.2) and of the conditional
+// two_blocks `probe` (§4.2), against the hole's and two_blocks' C-space builds.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -9,6 +11,7 @@
 #include "models/loaded_task.h"
 #include "verifier/atom_cone.h"
 #include "verifier/forward_projection.h"
+#include "verifier/verify.h"
 
 namespace {
 
@@ -64,6 +67,21 @@ void BM_ProjectGrid(benchmark::State& state) {
   project(state, t, t.task.motions[0].target);
 }
 
+const cmt::LoadedTask& hole() {
+  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole.yaml");
+  return *task;
+}
+void BM_BuildCSpaceHole(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(hole().task));
+}
+void BM_VerifyHoleTeach(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach")));
+}
+void BM_VerifyTwoBlocksProbe(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::verify_strategy(two_blocks(), *two_blocks().task.find_strategy("probe")));
+}
+
 }  // namespace
 
 BENCHMARK(BM_BuildCSpaceTwoBlocks)->Unit(benchmark::kMillisecond);
@@ -71,4 +89,7 @@ BENCHMARK(BM_ProjectTwoBlocksDown)->Unit(benchmark::kMillisecond)->Iterations(1)
 BENCHMARK(BM_ProjectTwoBlocksSlide)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_BuildCSpaceGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ProjectGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BuildCSpaceHole)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VerifyHoleTeach)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_VerifyTwoBlocksProbe)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_MAIN();
