@@ -49,6 +49,14 @@ bool box_interval(const AxisBox& box, const Vec3& a, const Vec3& b, double* t0, 
   return true;
 }
 
+// face ∩ box in the face's chart: the convex face polygon clipped by the box's half-spaces restricted to the
+// face's plane (exact); fewer than 3 points where the plane only touches the box.
+Points2 box_window(const ReachedSet::Impl& in, std::size_t fi, const std::array<fp::Plane3, 6>& planes) {
+  Points2 window = in.face_polygon[fi];
+  for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, in.charts[fi]));
+  return window;
+}
+
 bool in_box(const AxisBox& box, const Vec3& p) {
   for (int k = 0; k < 3; ++k)
     if (p[k] < box.min[k] || p[k] > box.max[k]) return false;
@@ -67,11 +75,7 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
   for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
     const fp::FaceSet& fs = in.faces[fi];
     if (fs.empty()) continue;
-    const fp::FaceChart& chart = in.charts[fi];
-    // face ∩ box in the chart: the convex face polygon clipped by the box's half-spaces restricted to the
-    // face's plane (exact).
-    Points2 window = in.face_polygon[fi];
-    for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, chart));
+    const Points2 window = box_window(in, fi, planes);
     if (window.empty()) continue;
     const int f = static_cast<int>(fi);
     if (window.size() >= 3) {
@@ -126,8 +130,7 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
     const fp::FaceSet& fs = in.faces[fi];
     if (fs.empty()) continue;
     const int f = static_cast<int>(fi);
-    Points2 window = in.face_polygon[fi];
-    for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, in.charts[fi]));
+    const Points2 window = box_window(in, fi, planes);
     if (!fs.region.is_empty()) {
       PolygonSet2 rest = fs.region;
       // A window without area removes nothing from a regularized region.

@@ -167,7 +167,7 @@ std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<P
       const FT k = value(H, q) / nn;
       return chart.project(Point3(q.x() - k * H.a(), q.y() - k * H.b(), q.z() - k * H.c()));
     };
-    PolygonSet2 region;
+    std::vector<Polygon2> layer_polygons;  // joined in one aggregated sweep below
     Points2 lower;
     const int layers = eps_t > 0 ? kSpringSlabLayers : 1;
     for (int k = 0; k < layers; ++k) {
@@ -195,10 +195,12 @@ std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<P
       }
       grown = clip(grown, g.face_polygon[gi]);
       if (grown.size() >= 3)
-        region.join(to_polygon(grown));
+        layer_polygons.push_back(to_polygon(grown));
       else if (!grown.empty() && lower.empty())
         lower = grown;
     }
+    PolygonSet2 region;
+    if (!layer_polygons.empty()) region.join(layer_polygons.begin(), layer_polygons.end());
     if (region.is_empty() && lower.empty()) continue;
     FlightHit hit;
     hit.face = static_cast<int>(gi);

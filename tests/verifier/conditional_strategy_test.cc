@@ -16,18 +16,13 @@
 namespace cmt {
 namespace {
 
+using test::edge_between;
+
 using test::face_at;
 
 // Shrinking by kSensingBoxRelativeSlack x scale (diagonal 15) moves each side by 1.5e-8: areas within 1e-6.
 constexpr double kAreaTolerance = 1e-6;
 
-int edge_between(const CSpace& c, const Vec3& a, const Vec3& b) {
-  for (const Edge& e : c.edges())
-    if (((e.a - a).norm() < 1e-9 && (e.b - b).norm() < 1e-9) ||
-        ((e.a - b).norm() < 1e-9 && (e.b - a).norm() < 1e-9))
-      return e.id;
-  return -1;
-}
 
 struct Room {
   std::shared_ptr<const LoadedTask> task;

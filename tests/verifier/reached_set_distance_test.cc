@@ -14,6 +14,8 @@
 namespace cmt {
 namespace {
 
+using test::edge_between;
+
 using test::face_at;
 
 // An empty room [-4,4] x [-4,4] x [0,4] (the robot is a point): the floor z = 0 is one 8 x 8 face.
@@ -29,14 +31,6 @@ std::shared_ptr<const LoadedTask> room(const std::string& obstacles = "[]") {
       "test");
 }
 
-// The edge between the points a and b (either direction), or -1.
-int edge_between(const CSpace& c, const Vec3& a, const Vec3& b) {
-  for (const Edge& e : c.edges())
-    if (((e.a - a).norm() < 1e-12 && (e.b - b).norm() < 1e-12) ||
-        ((e.a - b).norm() < 1e-12 && (e.b - a).norm() < 1e-12))
-      return e.id;
-  return -1;
-}
 
 int vertex_at(const CSpace& c, const Vec3& p) {
   for (const Vertex& v : c.vertices())

@@ -14,19 +14,14 @@
 namespace cmt {
 namespace {
 
+using test::edge_between;
+
 using test::face_at;
 
 // Slack of the grown box: kSensingBoxRelativeSlack x scale (room diagonal 15) per side, far below 1e-6 in
 // area for the boxes below (perimeter < 20 in).
 constexpr double kAreaTolerance = 1e-6;
 
-int edge_between(const CSpace& c, const Vec3& a, const Vec3& b) {
-  for (const Edge& e : c.edges())
-    if (((e.a - a).norm() < 1e-9 && (e.b - b).norm() < 1e-9) ||
-        ((e.a - b).norm() < 1e-9 && (e.b - a).norm() < 1e-9))
-      return e.id;
-  return -1;
-}
 
 TEST(WithinBox, ClipsFacesEdgesAndVerticesExactly) {
   const auto lt = load_task_from_string(test::sensing_room(""), "room");
