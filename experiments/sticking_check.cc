@@ -95,9 +95,9 @@ void drive_trial(RolloutRunner& runner, Trial& t) {
 }  // namespace
 
 StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n, std::uint64_t seed,
-                                   int threads, AtomKindFilter kinds) {
+                                   int threads, AtomKindFilter kinds, const SimOptions& sim) {
   const auto start = std::chrono::steady_clock::now();
-  const auto scene = RolloutScene::build(task);
+  const auto scene = RolloutScene::build(task, sim);
   const AtomCones cones(task->cspace);
   const double command_speed = scene->controller_params().damper_speed;
   std::vector<int> atoms;
@@ -193,6 +193,14 @@ nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckRe
           {"disagreeing_trials", r.worst},
           {"records", records},
           {"seconds", r.seconds}};
+}
+
+SimOptions sticking_check_scene() {
+  SimOptions o;
+  const double seam = o.scene.seam_filter_relative;
+  o.scene = soft_layer_scene();
+  o.scene.seam_filter_relative = seam;
+  return o;
 }
 
 }  // namespace cmt

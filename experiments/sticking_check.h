@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "models/loaded_task.h"
+#include "sim/rollout.h"
 #include "verifier/damper.h"
 
 namespace cmt {
@@ -56,9 +57,16 @@ struct AtomKindFilter {
   bool faces = true, edges = true, vertices = true;
 };
 
-// n trials with the task's theta_v, from trial streams derived from (seed, i). threads >= 1; the result is
-// the same for every thread count.
+// n trials with the task's theta_v, from trial streams derived from (seed, i), in the MuJoCo scene of `sim`
+// (the rollouts' by default). threads >= 1; the result is the same for every thread count.
 StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n, std::uint64_t seed,
-                                   int threads, AtomKindFilter kinds = {});
+                                   int threads, AtomKindFilter kinds = {}, const SimOptions& sim = {});
+
+// The scene `cmt check-sticking` uses by default: the soft-surface-layer scene (sim/mjcf_export.h
+// soft_layer_scene(): 0.25 ms step, a 1 um soft layer) with the rollouts' seam filter. It is the scene that
+// passes the Coulomb calibration at concave edges for the velocity forms (docs/rollouts.md; the rollout
+// scene is 73 % off Coulomb's sliding speed there), and a check of Coulomb stick/slide classes needs
+// Coulomb contacts at every atom kind it tests.
+SimOptions sticking_check_scene();
 
 }  // namespace cmt
