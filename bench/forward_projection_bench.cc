@@ -75,7 +75,8 @@ void BM_BuildCSpaceHole(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(hole().task));
 }
 void BM_VerifyHoleTeach(benchmark::State& state) {
-  for (auto _ : state) benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach")));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach")));
 }
 void BM_VerifyTwoBlocksProbe(benchmark::State& state) {
   for (auto _ : state)

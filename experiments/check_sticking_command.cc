@@ -27,9 +27,10 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--threads", options->threads, "worker threads")->check(CLI::PositiveNumber);
   cmd->add_option("--kinds", options->kinds, "atom kinds to test (face, edge, vertex; default all)")
       ->check(CLI::IsMember({"face", "edge", "vertex"}));
-  cmd->add_option("--scene", options->scene,
-                  "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene) or rollout "
-                  "(the rollouts' default scene)")
+  cmd->add_option(
+         "--scene", options->scene,
+         "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene) or rollout "
+         "(the rollouts' default scene)")
       ->check(CLI::IsMember({"soft-layer", "rollout"}));
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([options, &state] {
@@ -42,7 +43,8 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       kinds = {has("face"), has("edge"), has("vertex")};
     }
     const SimOptions sim = options->scene == "rollout" ? SimOptions{} : sticking_check_scene();
-    const StickingCheckResult r = check_sticking(task, options->n, options->seed, options->threads, kinds, sim);
+    const StickingCheckResult r =
+        check_sticking(task, options->n, options->seed, options->threads, kinds, sim);
     nlohmann::json j = sticking_check_json(*task, r);
     j["scene"] = options->scene;
     j.erase("records");  // per-trial records are for reports (sweeps); the CLI prints the summary

@@ -145,8 +145,8 @@ struct ValidationResult {
 // free_termination, the free-space rest ball.
 double distance_to_prediction(const VerifyStep& step, const Vec3& p);
 // The index of the step in `steps` that predicts a rollout's motion: the one that simulated its strategy
-// node (conditional strategies, Buckley §4.2); motions and steps built without nodes pair by position. -1 when
-// the verifier simulated nothing for it.
+// node (conditional strategies, Buckley §4.2); motions and steps built without nodes pair by position. -1
+// when the verifier simulated nothing for it.
 int prediction_step(const std::vector<VerifyStep>& steps, const MotionOutcome& motion, int position);
 // ObservedEnd::motion and the results store's rollouts.motion: prediction_step, or steps.size() + position
 // when nothing predicts the motion (unique within a rollout, since a rollout runs each node at most once).

@@ -133,7 +133,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     } else {
       std::cout << task->task.name << ": " << (result.reliable ? "reliable" : "NOT reliable") << "\n";
       for (const auto& s : j["steps"]) {
-        std::cout << "  " << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
+        std::cout << "  "
+                  << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
                   << s["motion"].get<std::string>() << " terminates on:";
         for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
         std::cout << "\n";

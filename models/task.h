@@ -80,10 +80,11 @@ struct Motion {
 };
 
 // One branch of a conditional test (Buckley §4.2, Fig 4.2): after a motion the robot checks whether its
-// sensed position and sensed force are consistent with a node I_i and runs the first branch whose test passes.
-// The test has the form of a motion's termination sets: the sensed position in one of `when.position` (if
-// given) and the sensed force direction in one of `when.force` (if given). `otherwise` is the `else` branch,
-// taken when no earlier test passed. `first` is the strategy node run next; -1 ends the strategy there.
+// sensed position and sensed force are consistent with a node I_i and runs the first branch whose test
+// passes. The test has the form of a motion's termination sets: the sensed position in one of `when.position`
+// (if given) and the sensed force direction in one of `when.force` (if given). `otherwise` is the `else`
+// branch, taken when no earlier test passed. `first` is the strategy node run next; -1 ends the strategy
+// there.
 struct StrategyBranch {
   MotionTermination when;
   bool otherwise = false;

@@ -351,7 +351,8 @@ class Parser {
         if (previous < 0 || (i == 0 && parent_branch >= 0))
           item.fail("a branch tests the sensors after a motion: put a motion before it");
         if (i + 1 != list.size())
-          list.item(i + 1).fail("nothing may follow a branch in the same list (continue inside its branches)");
+          list.item(i + 1).fail(
+              "nothing may follow a branch in the same list (continue inside its branches)");
         parse_branch(item.at("branch"), task, strategy, previous);
         break;
       }
@@ -386,14 +387,16 @@ class Parser {
         if (i + 1 != list.size()) list.item(i + 1).fail("the 'else' branch must be the last one");
         if (!has_test) b.fail("a branch needs at least one 'when' test before 'else'");
       } else {
-        if (!b.raw()["when"].IsDefined()) b.fail("a branch is either {when: TEST, then: [...]} or {else: [...]}");
+        if (!b.raw()["when"].IsDefined())
+          b.fail("a branch is either {when: TEST, then: [...]} or {else: [...]}");
         if (!b.raw()["then"].IsDefined()) b.at("then");  // "missing required key"
         branch.when = parse_termination(Node(b.raw()["when"], b.child_path("when"), &file_));
         has_test = true;
       }
       const int index = static_cast<int>(strategy.nodes[static_cast<std::size_t>(after)].branches.size());
       strategy.nodes[static_cast<std::size_t>(after)].branches.push_back(branch);
-      const Node body(b.raw()[otherwise ? "else" : "then"], b.child_path(otherwise ? "else" : "then"), &file_);
+      const Node body(b.raw()[otherwise ? "else" : "then"], b.child_path(otherwise ? "else" : "then"),
+                      &file_);
       const int first = parse_strategy_list(body.sequence(), task, strategy, after, index);
       strategy.nodes[static_cast<std::size_t>(after)].branches[static_cast<std::size_t>(index)].first = first;
     }

@@ -165,7 +165,8 @@ double RolloutScene::timestep() const { return model_->get()->opt.timestep; }
 
 double RolloutScene::timeout(const Motion& motion, const Vec3& from) const {
   if (motion.kind == Motion::Kind::kDamper)
-    return options_.damper_timeout_scales * task_->cspace.scale() / (kStopRelativeSpeed * params_.damper_speed);
+    return options_.damper_timeout_scales * task_->cspace.scale() /
+           (kStopRelativeSpeed * params_.damper_speed);
   const double distance = (motion.target - from).norm();
   const double reach = distance + task_->cspace.scale();
   if (options_.form == ControllerForm::kPosition) {
@@ -332,7 +333,8 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
     const StrategyNode& node = strategy.nodes[static_cast<std::size_t>(node_id)];
     const Motion* motion = lt.task.find_motion(node.motion);
     if (motion == nullptr)
-      throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" + node.motion + "'");
+      throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" + node.motion +
+                                  "'");
     MotionOutcome mo;
     mo.motion = motion->name;
     mo.node = node_id;
@@ -370,8 +372,8 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
         break;
       }
       if (options.record_trajectory && step % options.trajectory_stride == 0)
-        out.trajectory.push_back({rollout_time + t + dt, motion_index, s.position(), sensed.position,
-                                  s.data.get()->ncon > 0});
+        out.trajectory.push_back(
+            {rollout_time + t + dt, motion_index, s.position(), sensed.position, s.data.get()->ncon > 0});
     }
     total_steps_ += step;
     mo.steps = step;

@@ -73,8 +73,8 @@ struct SimOptions {
   // sticking rule fires after ln(1 / kStopRelativeSpeed) = 4.6 of them, so a spring that is still moving
   // after 10 never stops. Damper: 3 scene lengths at kStopRelativeSpeed x the commanded speed, the slowest
   // speed the sticking rule does not count as stopped (a damper slides at any speed down to that near the
-  // friction cone's rim, and still reaches the end of its face in Buckley's model). Position form: 3x its via-point
-  // plan plus N / g.
+  // friction cone's rim, and still reaches the end of its face in Buckley's model). Position form: 3x its
+  // via-point plan plus N / g.
   double spring_timeout_time_constants = 10;
   double damper_timeout_scales = 3;
   // Optional termination sets per motion name (types 2 and 3); sticking and the time-out always apply.
@@ -113,7 +113,8 @@ struct RolloutOutcome {
   Vec3 end = Vec3::Zero();
   int atom = -1;
   Termination termination = Termination::kNone;  // of the last motion run
-  bool success = false;  // every motion terminated, every conditional test chose a branch, the end is in the goal
+  bool success =
+      false;  // every motion terminated, every conditional test chose a branch, the end is in the goal
   bool no_branch = false;  // a conditional test (Buckley §4.2) passed no branch and there was no `else`
   bool unstable = false;
   std::string unstable_reason;

@@ -491,9 +491,9 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
 namespace {
 
 // A planar task (dimension 2) is its [x, z] scene extruded along y and clipped to the slab
-// |y| <= kPlanarClipHalfDepth (models/task_loader.h), whose y walls are phantoms: a planar point stands for the
-// contact points above it across the slab (a segment along y), a planar segment for a rectangle. Without this
-// a goal segment at y = 0 would not contain the slab-wide edge a planar motion sticks on.
+// |y| <= kPlanarClipHalfDepth (models/task_loader.h), whose y walls are phantoms: a planar point stands for
+// the contact points above it across the slab (a segment along y), a planar segment for a rectangle. Without
+// this a goal segment at y = 0 would not contain the slab-wide edge a planar motion sticks on.
 Region extruded_across_slab(const Region& r) {
   const double h = kPlanarClipHalfDepth;
   const auto at = [](Vec3 p, double y) {
@@ -514,8 +514,7 @@ Region extruded_across_slab(const Region& r) {
 }  // namespace
 
 ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or_spatial) {
-  const Region region =
-      lt.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
+  const Region region = lt.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
   const CSpace& c = lt.cspace;
   const double tol = lt.surface_tolerance();
   ReachedSet rs(c);

@@ -47,8 +47,8 @@ ReachedSet weakly_consistent(const LoadedTask& lt, const AtomCones& cones, const
   return out;
 }
 
-ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& cones, const MotionTermination& t,
-                                       const ReachedSet& set) {
+ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& cones,
+                                       const MotionTermination& t, const ReachedSet& set) {
   const CSpace& c = lt.cspace;
   if (!t.any()) return set;
   // Which atoms surely pass the force part (all of them when there is none).

@@ -239,8 +239,9 @@ Points2 spring_strip(const ReachedSet::Impl& g, int fi, const Points2& part, con
   } else {
     for (const Vec3& q : extra) pts.push_back(chart.project(q));
   }
-  if (eps_t > 0) return clip(minkowski_outward(pts, disk_offsets(chart, g.cspace->faces()[fi].normal, eps_t)),
-                             g.face_polygon[fi]);
+  if (eps_t > 0)
+    return clip(minkowski_outward(pts, disk_offsets(chart, g.cspace->faces()[fi].normal, eps_t)),
+                g.face_polygon[fi]);
   Points2 hull = convex_hull(pts);
   if (hull.empty()) hull = {pts[0]};
   return clip(hull, g.face_polygon[fi]);

@@ -11,7 +11,8 @@ namespace cmt {
 namespace {
 
 // One motion's termination set from `start` (damper Alg 4.1, spring Alg 4.4, plus §4.5 sensing).
-VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& motion, const ReachedSet& start) {
+VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& motion,
+                    const ReachedSet& start) {
   VerifyStep step{motion.name, ReachedSet(lt.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
     SpringProjection p = forward_project_spring(lt, start, motion.target);
@@ -71,7 +72,8 @@ class StrategyVerifier {
 
   // A final set (the last motion of a path, or a branch that stops) must lie in the goal.
   void check_goal(int step, const ReachedSet& final_set, const std::string& what) {
-    std::vector<ReachedPiece> outside = final_set.pieces_outside(goal_, kGoalRelativeTolerance * lt_.cspace.scale());
+    std::vector<ReachedPiece> outside =
+        final_set.pieces_outside(goal_, kGoalRelativeTolerance * lt_.cspace.scale());
     if (!outside.empty()) fail(step, what + " is not inside the goal", std::move(outside));
   }
 
@@ -88,13 +90,15 @@ class StrategyVerifier {
     out_.steps.push_back(std::move(step));
     const VerifyStep& s = out_.steps.back();
     if (s.may_not_terminate) {
-      fail(index, "motion '" + motion->name + "' may never terminate: no reached atom can stick" +
-                      (motion->terminate.any() ? " and no reached point is consistent with its termination sets"
-                                               : ""));
+      fail(index,
+           "motion '" + motion->name + "' may never terminate: no reached atom can stick" +
+               (motion->terminate.any() ? " and no reached point is consistent with its termination sets"
+                                        : ""));
       return;
     }
     if (s.free_termination) {
-      // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either way.
+      // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either
+      // way.
       fail(index, "motion '" + motion->name + "' may come to rest in free space near its commanded position");
       return;
     }
@@ -123,7 +127,8 @@ class StrategyVerifier {
       auto shared = std::make_shared<const ReachedSet>(std::move(start));
       out_.steps[static_cast<std::size_t>(index)].branches.push_back({shared, -1});
       if (shared->empty()) continue;  // this branch cannot be taken
-      const std::string label = "branch " + std::to_string(i) + " (" + b.key + ") after motion '" + node.motion + "'";
+      const std::string label =
+          "branch " + std::to_string(i) + " (" + b.key + ") after motion '" + node.motion + "'";
       if (b.first < 0) {
         check_goal(index, *shared, "the start of " + label + ", which stops there,");
         continue;
@@ -151,7 +156,8 @@ class StrategyVerifier {
 
 VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names) {
   for (const std::string& name : names)
-    if (!lt.task.find_motion(name)) throw TaskError(lt.task.source_file, "motions", "no motion named '" + name + "'");
+    if (!lt.task.find_motion(name))
+      throw TaskError(lt.task.source_file, "motions", "no motion named '" + name + "'");
   return verify_strategy(lt, Strategy::sequence("", names));
 }
 

@@ -66,9 +66,10 @@ struct VerifyStep {
 struct VerifyResult {
   bool reliable = false;
   std::vector<VerifyStep> steps;
-  int failed_step = -1;                    // index into steps, or -1
-  std::string failure;                     // why, when unreliable
-  std::vector<ReachedPiece> outside_goal;  // offending pieces of the failed step (outside the goal, or no test)
+  int failed_step = -1;  // index into steps, or -1
+  std::string failure;   // why, when unreliable
+  std::vector<ReachedPiece>
+      outside_goal;  // offending pieces of the failed step (outside the goal, or no test)
   // Index into steps of each strategy node's simulation, -1 where a node was not simulated.
   std::vector<int> node_step;
   const VerifyStep* step_of_node(int node) const {

@@ -2,8 +2,8 @@
 // and never class the verifier gives. In the check's default scene (experiments/sticking_check.h
 // sticking_check_scene: the soft surface layer that makes concave edges follow Coulomb, with the seam filter
 // for the T-slot's plate boxes) every atom kind of cube, hole and tslot is checked; in the rollouts' scene
-// faces and vertices (MuJoCo 2.2's stiff contact lets a robot slip along a concave edge where Coulomb friction
-// holds it: docs/rollouts.md).
+// faces and vertices (MuJoCo 2.2's stiff contact lets a robot slip along a concave edge where Coulomb
+// friction holds it: docs/rollouts.md).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -40,7 +40,8 @@ TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheRolloutScene) {
   for (const std::string name : {"cube", "hole"}) {
     int status = -1;
     const auto j = run_json(
-        "check-sticking " + task(name) + " -n 2000 --seed 7 --kinds face --kinds vertex --scene rollout", &status);
+        "check-sticking " + task(name) + " -n 2000 --seed 7 --kinds face --kinds vertex --scene rollout",
+        &status);
     EXPECT_EQ(status, 0) << name;
     EXPECT_EQ(j["trials"], 2000);
     EXPECT_EQ(j["disagreements"], 0) << name << ": " << j["disagreeing_trials"].dump();

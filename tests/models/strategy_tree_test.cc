@@ -60,7 +60,7 @@ TEST(StrategyTree, BranchesBecomeATreeInFileOrder) {
                 - else: []
         - else: [p1]
 )"),
-                                   "tree.yaml");
+                                  "tree.yaml");
   const Strategy& s = *lt->task.find_strategy("probe");
   EXPECT_TRUE(s.conditional());
   // Pre-order: 0 p2, 1 p1 (branch 1), 2 p2 (inner branch 0), 3 p1 (its next), 4 p1 (else).
@@ -101,8 +101,8 @@ TEST(StrategyTree, EveryGrammarRuleHasAnError) {
                "put a motion before it");
   expect_error("  s:\n    - p1\n    - branch: [{when: " + test + ", then: [{branch: [{else: []}]}]}]\n",
                "strategies.s[1].branch[0].then[0]", "put a motion before it");
-  expect_error("  s:\n    - p1\n    - branch: [{when: " + test + ", then: []}]\n    - p2\n", "strategies.s[2]",
-               "nothing may follow a branch");
+  expect_error("  s:\n    - p1\n    - branch: [{when: " + test + ", then: []}]\n    - p2\n",
+               "strategies.s[2]", "nothing may follow a branch");
   expect_error("  s:\n    - p1\n    - branch: [{else: [p2]}, {when: " + test + ", then: []}]\n",
                "strategies.s[1].branch[1]", "the 'else' branch must be the last one");
   expect_error("  s:\n    - p1\n    - branch: [{else: [p2]}]\n", "strategies.s[1].branch[0]",
@@ -120,7 +120,8 @@ TEST(StrategyTree, EveryGrammarRuleHasAnError) {
                "give position");
   expect_error("  s:\n    - p1\n    - branch: [{when: " + test + ", then: [], otherwise: []}]\n",
                "strategies.s[1].branch[0].otherwise", "unknown key");
-  expect_error("  s:\n    - p1\n    - {branch: [{else: []}], fork: 1}\n", "strategies.s[1].fork", "unknown key");
+  expect_error("  s:\n    - p1\n    - {branch: [{else: []}], fork: 1}\n", "strategies.s[1].fork",
+               "unknown key");
   expect_error("  s:\n    - p1\n    - branch: [{when: " + test + ", then: p2}]\n",
                "strategies.s[1].branch[0].then", "expected a list");
 }

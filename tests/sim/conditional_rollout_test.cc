@@ -36,9 +36,10 @@ TEST(ChooseBranch, FirstPassingTestWinsElseCatchesTheRest) {
   EXPECT_EQ(choose_branch(n, Vec3(0.5, 0.5, 0.5), up), 0);        // both pass: the first wins
   EXPECT_EQ(choose_branch(n, Vec3(0.5, 0.5, 0.5), sideways), 0);  // position only
   EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), up), 1);          // force only
-  EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), Vec3(1, 0, 4)), 1);  // atan(1/4) = .245 rad from +z: inside .3
+  EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), Vec3(1, 0, 4)),
+            1);  // atan(1/4) = .245 rad from +z: inside .3
   EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), Vec3(1, 0, 3)), 2);  // atan(1/3) = .322 rad: outside, else
-  EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), Vec3::Zero()), 2);    // no contact force: no force test passes
+  EXPECT_EQ(choose_branch(n, Vec3(2, 0.5, 0.5), Vec3::Zero()), 2);   // no contact force: no force test passes
   EXPECT_EQ(choose_branch(node_with_tests(false), Vec3(2, 0.5, 0.5), sideways), -1);
   // A test with both sets needs both.
   StrategyNode both;

@@ -23,7 +23,6 @@ using test::face_at;
 // Shrinking by kSensingBoxRelativeSlack x scale (diagonal 15) moves each side by 1.5e-8: areas within 1e-6.
 constexpr double kAreaTolerance = 1e-6;
 
-
 struct Room {
   std::shared_ptr<const LoadedTask> task;
   int floor = -1, wall = -1, edge = -1;
@@ -48,8 +47,8 @@ TEST(WithoutBox, RemovesExactlyTheClosedBoxPart) {
   ASSERT_GE(r.floor, 0);
   ASSERT_GE(r.wall, 0);
   ASSERT_GE(r.edge, 0);
-  // Box x in [4, 6], |y| <= 1, z in [-1, .5]: the floor loses [4, 5] x [-1, 1] (area 2 of 100), the wall x = 5
-  // loses |y| <= 1, z <= .5 (area 1 of 50), the edge x = 5 loses y in [-1, 1] (t in [.4, .6], shrunk by the
+  // Box x in [4, 6], |y| <= 1, z in [-1, .5]: the floor loses [4, 5] x [-1, 1] (area 2 of 100), the wall x =
+  // 5 loses |y| <= 1, z <= .5 (area 1 of 50), the edge x = 5 loses y in [-1, 1] (t in [.4, .6], shrunk by the
   // slack), no vertex is inside.
   const ReachedSet rest = r.all.without_box({Vec3(4, -1, -1), Vec3(6, 1, 0.5)});
   EXPECT_NEAR(rest.face_area(r.floor), 98.0, 1e-12);
@@ -65,7 +64,8 @@ TEST(WithoutBox, RemovesExactlyTheClosedBoxPart) {
   EXPECT_TRUE(rest.face_region_contains(r.floor, Vec3(4, 0, 0)));
   EXPECT_FALSE(rest.face_region_contains(r.floor, Vec3(4.5, 0, 0)));
   EXPECT_TRUE(rest.face_region_contains(r.floor, Vec3(4.5, 1.01, 0)));
-  // A box touching the floor plane (max z = 0) holds the floor's closed part: it goes. A box above it does not.
+  // A box touching the floor plane (max z = 0) holds the floor's closed part: it goes. A box above it does
+  // not.
   EXPECT_NEAR(r.all.without_box({Vec3(-1, -1, -1), Vec3(1, 1, 0)}).face_area(r.floor), 96.0, 1e-12);
   EXPECT_NEAR(r.all.without_box({Vec3(-1, -1, 0.1), Vec3(1, 1, 1)}).face_area(r.floor), 100.0, 1e-12);
   // A box holding the room removes everything.
@@ -91,9 +91,9 @@ TEST(WithoutBox, CutsSegmentsAndDropsPointsInside) {
 TEST(StronglyConsistent, PositionShrinksTheBoxByEpsS) {
   const Room r;
   const AtomCones cones(r.task->cspace);
-  // P = x in [4, 6], |y| <= 1, z in [-1, .5]; shrunk by eps_s = .1: x in [4.1, 5.9], |y| <= .9, z in [-.9, .4].
-  // Every reading at those points is inside P; the floor loses .9 x 1.8 = 1.62, the wall |y| <= .9 by
-  // z in [0, .4] = .72.
+  // P = x in [4, 6], |y| <= 1, z in [-1, .5]; shrunk by eps_s = .1: x in [4.1, 5.9], |y| <= .9, z in [-.9,
+  // .4]. Every reading at those points is inside P; the floor loses .9 x 1.8 = 1.62, the wall |y| <= .9 by z
+  // in [0, .4] = .72.
   MotionTermination test;
   test.position.push_back({Vec3(4, -1, -1), Vec3(6, 1, 0.5)});
   const ReachedSet rest = without_strongly_consistent(*r.task, cones, test, r.all);
@@ -142,8 +142,9 @@ std::string room_with(const std::string& strategy, const std::string& terminate 
 // the goal.
 TEST(ConditionalVerify, ATestEveryEndSurelyPassesIsReliable) {
   // Test: x in [4, 6], |y| <= 4, |z| <= 1, shrunk: |y| <= 3.9 holds the whole termination set.
-  const Room r(room_with("  c:\n    - m\n    - branch:\n        - when: {position: {box: {min: [4, -4, -1], max: "
-                         "[6, 4, 1]}}}\n          then: [m]\n"));
+  const Room r(
+      room_with("  c:\n    - m\n    - branch:\n        - when: {position: {box: {min: [4, -4, -1], max: "
+                "[6, 4, 1]}}}\n          then: [m]\n"));
   const VerifyResult v = verify_strategy(*r.task, *r.task->task.find_strategy("c"));
   EXPECT_TRUE(v.reliable) << v.failure;
   ASSERT_EQ(v.steps.size(), 2u);
@@ -165,7 +166,8 @@ TEST(ConditionalVerify, ATestEveryEndSurelyPassesIsReliable) {
 TEST(ConditionalVerify, EndsThatMayPassNoTestFailWithoutElse) {
   // Test |y| <= 2, shrunk |y| <= 1.9: the edge ends with 1.9 < |y| <= 2.3549 may read outside it.
   const std::string test = "{position: {box: {min: [4, -2, -1], max: [6, 2, 1]}}}";
-  const Room r(room_with("  c:\n    - m\n    - branch: [{when: " + test + ", then: []}]\n  e:\n    - m\n    - "
+  const Room r(room_with("  c:\n    - m\n    - branch: [{when: " + test +
+                         ", then: []}]\n  e:\n    - m\n    - "
                          "branch: [{when: " +
                          test + ", then: []}, {else: []}]\n"));
   const VerifyResult v = verify_strategy(*r.task, *r.task->task.find_strategy("c"));
@@ -195,10 +197,11 @@ TEST(ConditionalVerify, ABranchThatStopsOutsideTheGoalFailsAndUnreachableBranche
   // eps_s, see sensing_termination_test.cc). Branch 0 (x <= 2) stops there: outside the goal edge. Branch 1
   // (a box up at z >= 3) holds no termination point: not reachable, not simulated. Branch 2 (else) starts
   // from the edge and runs m, which sticks there again.
-  const Room r(room_with("  c:\n    - m\n    - branch:\n        - when: {position: {box: {min: [-2, -2, -1], "
-                         "max: [2, 2, 1]}}}\n          then: []\n        - when: {position: {box: {min: [-5, -5, "
-                         "3], max: [5, 5, 5]}}}\n          then: [m]\n        - else: [m]\n",
-                         "{position: {box: {min: [0, -0.5, -0.5], max: [1, 0.5, 0.5]}}}"));
+  const Room r(
+      room_with("  c:\n    - m\n    - branch:\n        - when: {position: {box: {min: [-2, -2, -1], "
+                "max: [2, 2, 1]}}}\n          then: []\n        - when: {position: {box: {min: [-5, -5, "
+                "3], max: [5, 5, 5]}}}\n          then: [m]\n        - else: [m]\n",
+                "{position: {box: {min: [0, -0.5, -0.5], max: [1, 0.5, 0.5]}}}"));
   const VerifyResult v = verify_strategy(*r.task, *r.task->task.find_strategy("c"));
   EXPECT_FALSE(v.reliable);
   EXPECT_EQ(v.failed_step, 0);
@@ -222,9 +225,9 @@ TEST(ConditionalVerify, ABranchThatStopsOutsideTheGoalFailsAndUnreachableBranche
 TEST(ConditionalVerify, TwoBlocksProbeIsReliableWhereTiltAloneIsNot) {
   // models/tasks/two_blocks.yaml: v3 may stick on B's top or slide into the gap (tilt alone: unreliable).
   // probe stops when the sensed position is near the gap floor, else runs v2 (slide): reliable. The gap floor
-  // (x in [-1.5, 1.5], |y| <= 4: area 24) is all reached, surely passes the test (the box shrunk by eps_s = .2
-  // is x in [-1.8, 1.8], |y| <= 4.8, z in [-.8, .3]), and so is absent from the else branch, which starts on
-  // B's top (z = 3: more than eps_s above the box, so branch 0 holds none of it).
+  // (x in [-1.5, 1.5], |y| <= 4: area 24) is all reached, surely passes the test (the box shrunk by eps_s =
+  // .2 is x in [-1.8, 1.8], |y| <= 4.8, z in [-.8, .3]), and so is absent from the else branch, which starts
+  // on B's top (z = 3: more than eps_s above the box, so branch 0 holds none of it).
   const auto lt = load_task(std::filesystem::path(CMT_SOURCE_DIR) / "models/tasks/two_blocks.yaml");
   const CSpace& c = lt->cspace;
   const int gap = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0)), top = face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3));

@@ -66,7 +66,8 @@ TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
   // theta_v > phi: v1 may stick on B's top (the start is there) and, sliding off either side, on the floor
   // of the gap and right of B, never on A's top (z = 2 is out of reach from x >= 1.5 - 3 tan(.25) > -1.5).
   const ReachedSet& t = down.steps.at(0).termination;
-  const int top_b = test::face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3)), top_a = test::face_at(c, Vec3::UnitZ(), Vec3(-3, 0, 2));
+  const int top_b = test::face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3)),
+            top_a = test::face_at(c, Vec3::UnitZ(), Vec3(-3, 0, 2));
   const int right = test::face_at(c, Vec3::UnitZ(), Vec3(5, 0, 0));
   EXPECT_GT(t.face_area(top_b), 0.0);
   EXPECT_GT(t.face_area(right), 0.0);

@@ -31,7 +31,6 @@ std::shared_ptr<const LoadedTask> room(const std::string& obstacles = "[]") {
       "test");
 }
 
-
 int vertex_at(const CSpace& c, const Vec3& p) {
   for (const Vertex& v : c.vertices())
     if ((v.point - p).norm() < 1e-12) return v.id;

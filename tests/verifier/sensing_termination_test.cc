@@ -22,7 +22,6 @@ using test::face_at;
 // area for the boxes below (perimeter < 20 in).
 constexpr double kAreaTolerance = 1e-6;
 
-
 TEST(WithinBox, ClipsFacesEdgesAndVerticesExactly) {
   const auto lt = load_task_from_string(test::sensing_room(""), "room");
   const CSpace& c = lt->cspace;

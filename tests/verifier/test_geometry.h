@@ -15,7 +15,8 @@ inline int face_at(const CSpace& c, const Vec3& normal, const Vec3& p) {
 // The edge between the points a and b (either direction, endpoints within 1e-9), or -1.
 inline int edge_between(const CSpace& c, const Vec3& a, const Vec3& b) {
   for (const Edge& e : c.edges())
-    if (((e.a - a).norm() < 1e-9 && (e.b - b).norm() < 1e-9) || ((e.a - b).norm() < 1e-9 && (e.b - a).norm() < 1e-9))
+    if (((e.a - a).norm() < 1e-9 && (e.b - b).norm() < 1e-9) ||
+        ((e.a - b).norm() < 1e-9 && (e.b - a).norm() < 1e-9))
       return e.id;
   return -1;
 }
