@@ -33,8 +33,8 @@ void observe_rollout(const std::vector<VerifyStep>& steps, const RolloutOutcome&
     const MotionOutcome& m = ro.motions[mi];
     ObservedEnd e;
     e.rollout = ro.index;
-    const int step_index = prediction_step(steps, m, static_cast<int>(mi));
     e.motion = motion_key(steps, m, static_cast<int>(mi));
+    const int step_index = e.motion < static_cast<int>(steps.size()) ? e.motion : -1;
     e.motion_name = m.motion;
     e.end = m.end;
     e.atom = m.atom;

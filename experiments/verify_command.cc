@@ -113,9 +113,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                         "no strategy named '" + options->strategy + "'");
       strategy = *s;
     } else if (!options->motion.empty()) {
-      if (!task->task.find_motion(options->motion))
-        throw TaskError(task->task.source_file, "motions", "no motion named '" + options->motion + "'");
-      strategy = Strategy::sequence(options->motion, {options->motion});
+      strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: TaskError (verify.h)
     } else {
       throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
     }

@@ -68,8 +68,8 @@ struct VerifyResult {
   std::vector<VerifyStep> steps;
   int failed_step = -1;  // index into steps, or -1
   std::string failure;   // why, when unreliable
-  std::vector<ReachedPiece>
-      outside_goal;  // offending pieces of the failed step (outside the goal, or no test)
+  // Offending pieces of the failed step: outside the goal, or passing no test.
+  std::vector<ReachedPiece> outside_goal;
   // Index into steps of each strategy node's simulation, -1 where a node was not simulated.
   std::vector<int> node_step;
   const VerifyStep* step_of_node(int node) const {
@@ -84,7 +84,7 @@ struct VerifyResult {
 // regions are compared exactly.
 inline constexpr double kGoalRelativeTolerance = 1e-6;
 
-// A decision-free sequence (Strategy::sequence); motion names are checked (TaskError).
+// A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.
 VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions);
 VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy);
 
