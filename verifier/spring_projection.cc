@@ -191,6 +191,18 @@ class SpringProjector {
     const Points2 d = clip(chart_disk(r_, fi, center, r, false), r_.face_polygon[fi]);
     return d.size() >= 3 ? PolygonSet2(to_polygon(d)) : PolygonSet2();
   }
+  // The overshoot of a slide on face fi, in the face's plane (Fig 3.14): sliding trajectories from s stay in
+  // the projection of the free-space cylinder about seg[s, p + eps_o u(s)], u(s) = (p − s) / |p − s|, whose
+  // overshoot end projects to p' + eps_o P(u(s)) with |P(u(s))| = d / sqrt(d^2 + h^2) (d = |s − p'|, h the
+  // distance of p from the plane), increasing in d. Over the entries it is at most eps_o g(d_max + eps_s,
+  // h − eps_s): the sensing error may move the aim point by eps_s (Fig 3.10), which can only bring it nearer
+  // the plane and farther along it.
+  double in_plane_overshoot(int fi, const std::vector<Vec3>& from) const {
+    const double d = max_dist(fi, from) + u_.eps_s;
+    const double h = std::max(0.0, std::abs(depth_[fi]) - u_.eps_s);
+    if (h == 0) return eps_o_;
+    return eps_o_ * (d / std::hypot(d, h)) * (1 + kSpringRelativeSlack);
+  }
   double max_dist(int fi, const std::vector<Vec3>& pts) const {
     double d = 0;
     for (const Vec3& x : pts) d = std::max(d, (x - centers_[fi]).norm());
@@ -231,7 +243,8 @@ class SpringProjector {
     }
     const Points2 entry_hull = hull_or_points(entry_pts);
     if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
-    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_, eps_o_);
+    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_,
+                                       in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {
       // The slide ends where the robot must leave the face: the strip outside the no-slide disk.
       PolygonSet2 slid(to_polygon(strip));
@@ -313,6 +326,38 @@ class SpringProjector {
     return std::max(hi, eps_o_) * (1 + kSpringRelativeSlack);
   }
 
+  // Staying on an edge (Buckley §3.3.2 applied to edge contact): the robot keeps an edge contact only while
+  // it may push into every face that meets there. Pulling away from one face moves it off the edge line:
+  // into free space at a convex edge, along the other face (a may_enter entry) at a concave one. The pull
+  // p − x̂ surely points away from face f, beyond theta_v, when its part along f's normal exceeds
+  // sin(theta_v) |p − x̂| for every sensed x̂: (−depth_f − eps_s) > sin(theta_v) (|p − x| + eps_s), i.e. within
+  // distance R_f = (−depth_f − eps_s) / sin(theta_v) − eps_s of p. On the edge line |p − x|^2 = perp^2 + (len
+  // (t − tp))^2, so the points where the robot must leave form the open parameter interval (tp − a, tp + a),
+  // a = sqrt(R^2 − perp^2) / len, R = max_f R_f; non-manifold edges: none. Returns a, shrunk by the decision
+  // margin (favours staying): 0 when there is no such interval, infinity when the robot must leave
+  // everywhere.
+  double edge_leave_halfwidth(const Edge& e, double tp, double len) const {
+    if (e.shape == EdgeShape::kNonManifold) return 0;
+    const double sv = std::sin(u_.theta_v), margin = kDecisionMargin * c_.scale();
+    double radius = 0;
+    for (int f : e.faces) {
+      const double pull_away = -depth_[f] - u_.eps_s - margin;
+      double r_f;
+      if (pull_away <= 0)
+        r_f = 0;
+      else if (sv <= 0)
+        r_f = std::numeric_limits<double>::infinity();
+      else
+        r_f = std::max(0.0, pull_away / sv - u_.eps_s);
+      radius = std::max(radius, r_f);
+    }
+    if (std::isinf(radius)) return radius;
+    const Vec3 q = e.a + tp * (e.b - e.a);
+    const double perp = (p_ - q).norm();
+    if (radius <= perp) return 0;
+    return std::sqrt(radius * radius - perp * perp) / len - kEdgeParamSlack;
+  }
+
   void process_edge(int ei) {
     ++steps_;
     std::vector<EdgeInterval> ivs = std::move(pend_edge_[ei]);
@@ -326,11 +371,25 @@ class SpringProjector {
     const double len = d.norm();
     const double tp = (p_ - e.a).dot(d) / (len * len);
     const double w = edge_halfwidth(e) / len + kEdgeParamSlack;
+    // The robot cannot stay on the edge strictly inside (tp - leave, tp + leave) (edge_leave_halfwidth).
+    const double leave = edge_leave_halfwidth(e, tp, len);
     for (const EdgeInterval& iv : ivs) {
       const Vec3 a = e.a + iv.t0 * d, b = e.a + iv.t1 * d;
-      // Along the edge toward q (and either way near it); flat edges are motion on the plane (faces).
-      if (e.shape != EdgeShape::kFlat)
-        add_interval(ei, std::max(0.0, std::min(iv.t0, tp - w)), std::min(1.0, std::max(iv.t1, tp + w)));
+      // Along the edge toward q (and either way near it), but not into the part where it must leave;
+      // flat edges are motion on the plane (faces).
+      if (e.shape != EdgeShape::kFlat) {
+        if (leave <= 0) {
+          add_interval(ei, std::max(0.0, std::min(iv.t0, tp - w)), std::min(1.0, std::max(iv.t1, tp + w)));
+        } else {
+          const double lo = tp - leave, hi = tp + leave;
+          if (iv.t0 <= lo)  // from below the leaving part: toward q, stopping where it must leave
+            add_interval(ei, std::max(0.0, std::min(iv.t0, tp - w)),
+                         std::min({1.0, std::max(std::min(iv.t1, lo), tp + w), lo}));
+          if (iv.t1 >= hi)  // from above it
+            add_interval(ei, std::max({0.0, std::min(std::max(iv.t0, hi), tp - w), hi}),
+                         std::min(1.0, std::max(iv.t1, tp + w)));
+        }
+      }
       // Onto an adjacent face when some admissible velocity points into it (see may_enter).
       for (int f : e.faces) {
         const int fi = f;

@@ -21,4 +21,11 @@ inline int edge_between(const CSpace& c, const Vec3& a, const Vec3& b) {
   return -1;
 }
 
+// The vertex at p (within 1e-9), or -1.
+inline int vertex_at(const CSpace& c, const Vec3& p) {
+  for (const Vertex& v : c.vertices())
+    if ((v.point - p).norm() < 1e-9) return v.id;
+  return -1;
+}
+
 }  // namespace cmt::test
