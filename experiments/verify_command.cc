@@ -56,6 +56,7 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                      {"may_not_terminate", s.may_not_terminate},
                      {"fallback", s.fallback},
                      {"fixpoint_steps", s.fixpoint_steps},
+                     {"widened_atoms", s.widened_atoms},
                      {"reached_area", s.reached_area}});
     if (with_reached && s.reached) steps.back()["reached"] = pieces_json(lt, s.reached->pieces());
     // The part of `termination` due to the motion's termination sets (Buckley §4.5), when it has any.

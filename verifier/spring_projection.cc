@@ -44,6 +44,8 @@ class SpringProjector {
     pend_new_.resize(nf_);
     pend_new_lower_.resize(nf_);
     pend_edge_.resize(ne_);
+    face_growths_.assign(nf_, 0);
+    edge_growths_.assign(ne_, 0);
     pend_vertex_.assign(nv_, 0);
     for (int fi = 0; fi < nf_; ++fi) {
       const Face& f = c_.faces()[fi];
@@ -111,6 +113,7 @@ class SpringProjector {
     out.may_not_terminate = out.termination.empty() && !out.free_termination;
     out.reached = std::move(reached_);
     out.steps = steps_;
+    out.widened = widened_;
     return out;
   }
 
@@ -118,7 +121,12 @@ class SpringProjector {
   // ---- adding ----
   void add_reached_region(int fi, const PolygonSet2& part) {
     PolygonSet2 added;
-    if (r_.add_region(fi, part, &added)) pend_new_[fi].join(added);
+    if (!r_.add_region(fi, part, &added)) return;
+    pend_new_[fi].join(added);
+    if (++face_growths_[fi] == kSpringWideningRounds) {  // widening: the whole face (a superset)
+      ++widened_;
+      add_reached_region(fi, PolygonSet2(to_polygon(r_.face_polygon[fi])));
+    }
   }
   void add_reached_lower(int fi, const Points2& pts) {
     const bool fresh = pts.size() == 2 ? r_.add_segment(fi, pts[0], pts[1]) : r_.add_point(fi, pts[0]);
@@ -146,6 +154,10 @@ class SpringProjector {
     if (fresh < 0) return;
     if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
       for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
+    if (fresh > 0 && ++edge_growths_[ei] == kSpringWideningRounds) {  // widening: the whole edge
+      ++widened_;
+      add_interval(ei, 0, 1);
+    }
   }
   void add_vertex(int vi) {
     if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
@@ -491,6 +503,8 @@ class SpringProjector {
   std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
   std::vector<char> pend_vertex_;
+  std::vector<int> face_growths_, edge_growths_;  // growth counts for widening
+  int widened_ = 0;
   bool flew_ = false;
   int steps_ = 0;
 };

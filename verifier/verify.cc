@@ -20,6 +20,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;
     step.fixpoint_steps = p.steps;
+    step.widened_atoms = p.widened;
     step.reached_area = p.reached.area();
     step.free_termination = p.free_termination;
     step.free_center = p.free_center;
