@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "tests/verifier/test_geometry.h"
@@ -126,8 +127,9 @@ TEST(ForwardProjection, SlidingHalfAngleAbovePiOver2ReachesTheWholeFace) {
   const Vec3 v(std::sin(0.45), 0, -std::cos(0.45));
   const SlidingCone s = sliding_cone(Vec3::UnitZ(), 0.1, v, 0.5);
   ASSERT_TRUE(s.all || s.half_angle > kPi / 2);
-  const Projected r = project(scene(0.1, 0.5, "[]", kRoom, "[0, 0, 0]",
-                                    "[" + std::to_string(v.x()) + ", 0, " + std::to_string(v.z()) + "]"));
+  std::ostringstream velocity;  // (not string concatenation: g++ 12 warns falsely there, -Wrestrict)
+  velocity << "[" << v.x() << ", 0, " << v.z() << "]";
+  const Projected r = project(scene(0.1, 0.5, "[]", kRoom, "[0, 0, 0]", velocity.str()));
   const int floor = face_at(r.task->cspace, Vec3::UnitZ(), Vec3(0, 0, 0));
   EXPECT_NEAR(r.projection.reached.face_area(floor), 100.0, 1e-9);
 }
