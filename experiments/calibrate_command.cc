@@ -24,6 +24,7 @@ nlohmann::json calibration_json(const CalibrationResult& r) {
                      {"observed", c.observed},
                      {"command_speed", c.command_speed},
                      {"creep", c.creep},
+                     {"loading_creep", c.loading_creep},
                      {"speed", c.speed},
                      {"analytic_speed", c.analytic_speed},
                      {"speed_error", c.speed_error},
@@ -34,6 +35,7 @@ nlohmann::json calibration_json(const CalibrationResult& r) {
           {"agree", r.agree},
           {"passed", r.passed},
           {"max_creep", r.max_creep},
+          {"max_loading_creep", r.max_loading_creep},
           {"max_speed_error", r.max_speed_error},
           {"max_penetration", r.max_penetration},
           {"face", {{"max_creep", r.max_face_creep}, {"max_speed_error", r.max_face_speed_error}}},
@@ -79,7 +81,8 @@ void add_calibrate_friction_command(CLI::App& app, CommandState& state) {
       for (const CalibrationCase& c : r.cases) failed += !c.passed && c.expected != "ambiguous";
       std::cout << r.cases.size() << " cases (" << r.ambiguous << " ambiguous), " << failed
                 << " failed; agree " << (r.agree ? "yes" : "no") << ", max creep " << r.max_creep << " (face "
-                << r.max_face_creep << "), max speed error " << r.max_speed_error << " (face "
+                << r.max_face_creep << "; position form while loading " << r.max_loading_creep
+                << ", not scored), max speed error " << r.max_speed_error << " (face "
                 << r.max_face_speed_error << "), max penetration " << r.max_penetration << " m\n";
     }
     state.exit_status = r.passed ? kExitSuccess : kExitFailureFound;
