@@ -29,9 +29,10 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       ->check(CLI::IsMember({"face", "edge", "vertex"}));
   cmd->add_option(
          "--scene", options->scene,
-         "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene) or rollout "
-         "(the rollouts' default scene)")
-      ->check(CLI::IsMember({"soft-layer", "rollout"}));
+         "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene), rollout "
+         "(the rollouts' scene: the same since 2026-11-26) or stiff (sim/rollout.h stiff_scene, the "
+         "rollouts' scene before)")
+      ->check(CLI::IsMember({"soft-layer", "rollout", "stiff"}));
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([options, &state] {
     const auto task = load_task(options->task);
@@ -42,7 +43,8 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       };
       kinds = {has("face"), has("edge"), has("vertex")};
     }
-    const SimOptions sim = options->scene == "rollout" ? SimOptions{} : sticking_check_scene();
+    SimOptions sim = sticking_check_scene();
+    if (options->scene == "stiff") sim.scene = stiff_scene();
     const StickingCheckResult r =
         check_sticking(task, options->n, options->seed, options->threads, kinds, sim);
     nlohmann::json j = sticking_check_json(*task, r);

@@ -195,12 +195,6 @@ nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckRe
           {"seconds", r.seconds}};
 }
 
-SimOptions sticking_check_scene() {
-  SimOptions o;
-  const double seam = o.scene.seam_filter_relative;
-  o.scene = soft_layer_scene();
-  o.scene.seam_filter_relative = seam;
-  return o;
-}
+SimOptions sticking_check_scene() { return SimOptions{}; }
 
 }  // namespace cmt

@@ -62,11 +62,11 @@ struct AtomKindFilter {
 StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n, std::uint64_t seed,
                                    int threads, AtomKindFilter kinds = {}, const SimOptions& sim = {});
 
-// The scene `cmt check-sticking` uses by default: the soft-surface-layer scene (sim/mjcf_export.h
-// soft_layer_scene(): 0.25 ms step, a 1 um soft layer) with the rollouts' seam filter. It is the scene that
-// passes the Coulomb calibration at concave edges for the velocity forms (docs/rollouts.md; the rollout
-// scene is 73 % off Coulomb's sliding speed there), and a check of Coulomb stick/slide classes needs
-// Coulomb contacts at every atom kind it tests.
+// The scene `cmt check-sticking` uses by default: the rollouts' own (SimOptions{}, sim/rollout.h
+// calibrated_scene(): the soft-surface-layer scene with the seam filter). It is the scene that passes the
+// Coulomb calibration, at concave edges too (docs/rollouts.md; the old stiff scene, stiff_scene(), is 73 %
+// off Coulomb's sliding speed there), and a check of Coulomb stick/slide classes needs Coulomb contacts at
+// every atom kind it tests.
 SimOptions sticking_check_scene();
 
 }  // namespace cmt

@@ -1,5 +1,6 @@
 #include "sim/calibration.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -102,24 +103,44 @@ CalibrationResult calibrate_friction(std::vector<ControllerForm> forms, const Mj
             m.kind = spring ? Motion::Kind::kSpring : Motion::Kind::kDamper;
             m.target = spring ? Vec3(g.position + distance * dir) : dir;
             const bool position_form = form == ControllerForm::kPosition;
-            const double settle = position_form ? 0.5 : 0.1, window = position_form ? 0.5 : 0.2;
-            Vec3 x1 = Vec3::Zero(), x2 = Vec3::Zero();
+            const ControllerParams& params = scene->controller_params();
+            // Velocity forms: creep and speed over kVelocityWindow after kVelocitySettle, stick/slide from
+            // that speed. Position form (calibration.h): creep at constant load, over kPositionWindow once
+            // the via plan is complete and kPositionSettleTimeConstants / g have passed; stick/slide from the
+            // travel along the tangent over the whole motion; the slip while the load grows is reported
+            // (loading_creep) over kPositionLoadingWindow after kPositionLoadingStart.
+            // The plan: ViaPointSpring::plan (controllers/controller.cc) splits the distance to the target
+            // into ceil(distance / step) segments, one via point every via_time, from time 0; the last one
+            // has run to completion (AML MOVE) after segments x via_time.
+            const int segments =
+                std::max(1, static_cast<int>(std::ceil((m.target - g.position).norm() / params.step)));
+            const double plan = segments * params.via_time;
+            const double settle =
+                position_form ? plan + kPositionSettleTimeConstants / params.position_gain : kVelocitySettle;
+            const double window = position_form ? kPositionWindow : kVelocityWindow;
+            const double duration = settle + window;
+            const double loading_end = kPositionLoadingStart + kPositionLoadingWindow;
+            Vec3 x1 = Vec3::Zero(), x2 = Vec3::Zero(), l1 = Vec3::Zero(), l2 = Vec3::Zero();
             double penetration = 0;
-            runner.drive(g.position, m, settle + window, [&](const StepState& st) {
+            runner.drive(g.position, m, duration, [&](const StepState& st) {
               penetration = std::max(penetration, st.penetration * s);
               if (std::abs(st.time - settle) < 1e-9) x1 = st.position;
+              if (std::abs(st.time - kPositionLoadingStart) < 1e-9) l1 = st.position;
+              if (std::abs(st.time - loading_end) < 1e-9) l2 = st.position;
               x2 = st.position;
             });
             const double tangential = (x2 - x1).dot(tangent) / window;
             if (position_form) {
-              c.command_speed = scene->controller_params().step / scene->controller_params().via_time;
+              c.command_speed = params.step / params.via_time;
             } else if (spring) {
               c.command_speed = lambda * (m.target - x1).norm();
             } else {
-              c.command_speed = scene->controller_params().damper_speed;
+              c.command_speed = params.damper_speed;
             }
-            c.speed = tangential;
-            c.observed = std::abs(tangential) > kSlideThreshold * c.command_speed ? "slide" : "stick";
+            // Position form: the mean tangential speed over the whole motion, so that a slide that ends
+            // while the plan runs is still seen.
+            c.speed = position_form ? (x2 - g.position).dot(tangent) / duration : tangential;
+            c.observed = std::abs(c.speed) > kSlideThreshold * c.command_speed ? "slide" : "stick";
             c.max_penetration = penetration;
             // Coulomb's sliding speed: kinetic friction mu x (sum of the normal parts) opposes the slip.
             if (!position_form && c.observed == "slide" && c.expected == "slide") {
@@ -136,7 +157,11 @@ CalibrationResult calibrate_friction(std::vector<ControllerForm> forms, const Mj
               }
               c.speed_error = std::abs(c.speed / c.analytic_speed - 1);
             }
-            if (c.observed == "stick") c.creep = std::abs(tangential) / c.command_speed;
+            if (c.observed == "stick") {
+              c.creep = std::abs(tangential) / c.command_speed;
+              if (position_form)
+                c.loading_creep = std::abs((l2 - l1).dot(tangent)) / kPositionLoadingWindow / c.command_speed;
+            }
             c.agree = c.expected == "ambiguous" || c.expected == c.observed;
             c.passed = c.agree && c.creep <= kMaxCreep && c.speed_error <= kMaxSpeedError &&
                        c.max_penetration <= kMaxPenetration;
@@ -145,6 +170,7 @@ CalibrationResult calibrate_friction(std::vector<ControllerForm> forms, const Mj
             } else {
               // Ambiguous cases are reported but not scored: Coulomb allows either outcome there.
               result.max_creep = std::max(result.max_creep, c.creep);
+              result.max_loading_creep = std::max(result.max_loading_creep, c.loading_creep);
               result.max_speed_error = std::max(result.max_speed_error, c.speed_error);
               double& speed_error =
                   g.name == "face" ? result.max_face_speed_error : result.max_edge_speed_error;

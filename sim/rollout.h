@@ -35,22 +35,38 @@ inline constexpr double kAtomRelativeTolerance = 1e-4;
 // than that.
 inline constexpr double kUnstablePenetrationRelative = 1e-3;
 
+// The rollouts' MuJoCo scene, the Coulomb-calibrated one (`cmt calibrate-friction` passes in it,
+// docs/rollouts.md "Calibration"): the soft-surface-layer scene (sim/mjcf_export.h soft_layer_scene(): a
+// 0.25 ms step and a 1 um soft layer over the stiff contact, so that both contacts of a robot sliding along a
+// concave edge stay active and the edge follows Coulomb) with the seam contact filter (sim/seam_filter.h) at
+// tau = the unstable penetration (below): every contact of a stable rollout is shallower than that, and every
+// feature of the built-in tasks is far wider. Robot mass 1 kg and servo gain b_s = 100 N s/m (joint damping)
+// as exported.
+inline MjcfOptions calibrated_scene() {
+  MjcfOptions o = soft_layer_scene();
+  o.seam_filter_relative = kUnstablePenetrationRelative;
+  return o;
+}
+
+// The rollouts' scene until 2026-11-26, kept for comparisons (`cmt calibrate-friction --scene stiff`,
+// `cmt check-sticking --scene stiff`): the exporter's stiff contact (d = 0.99 at every depth) at a 0.5 ms
+// step, with the seam filter. It meets every calibration criterion on a face (sliding within 1.4 % of
+// Coulomb, penetration at 1 in/s <= 6.3e-6 m) but not in a concave edge: sliding there runs up to 73 % off
+// Coulomb (each face's contact hops off and the other face's friction wedges the robot into the edge,
+// docs/rollouts.md "Concave edges").
+inline MjcfOptions stiff_scene() {
+  MjcfOptions o;
+  o.timestep = 0.0005;
+  o.seam_filter_relative = kUnstablePenetrationRelative;
+  return o;
+}
+
 struct SimOptions {
   ControllerForm form = ControllerForm::kAdmittance;
   SampleMode mode = SampleMode::kUniform;
-  // The MuJoCo scene: robot mass 1 kg and servo gain b_s = 100 N s/m (joint damping) as exported, but a
-  // 0.5 ms step instead of 1 ms: contacts (time constant 2 steps) get 4x stiffer, which brings the
-  // penetration of a body sliding at 1 in/s from 6.9e-6 m to at most 6.3e-6 m (4.4e-6 m without force
-  // feedback) and face sliding speeds within 1.4 % of Coulomb (at 1 ms the worst was 2.1 %), for twice the
-  // steps (calibrate-friction, docs/rollouts.md).
-  // Seam contacts are filtered (sim/seam_filter.h) with tau = the unstable penetration (below): every contact
-  // of a stable rollout is shallower than that, and every feature of the built-in tasks is far wider.
-  MjcfOptions scene = [] {
-    MjcfOptions o;
-    o.timestep = 0.0005;
-    o.seam_filter_relative = kUnstablePenetrationRelative;
-    return o;
-  }();
+  // The MuJoCo scene: calibrated_scene() (above). It takes 2x the steps of stiff_scene() (0.25 vs 0.5 ms)
+  // and more solver work per step (docs/rollouts.md "Speed").
+  MjcfOptions scene = calibrated_scene();
   // Spring rate lambda (1/s): time constant 0.25 s = 25 servo time constants, so the robot is first order on
   // the motion's time scale (Buckley §3.1), and the lag that remains is compensated (controller.h).
   double spring_rate = 4;

@@ -1,9 +1,9 @@
 // The physics check of the damper stick/slide classes (cmt check-sticking): MuJoCo must agree with every must
-// and never class the verifier gives. In the check's default scene (experiments/sticking_check.h
-// sticking_check_scene: the soft surface layer that makes concave edges follow Coulomb, with the seam filter
-// for the T-slot's plate boxes) every atom kind of cube, hole and tslot is checked; in the rollouts' scene
-// faces and vertices (MuJoCo 2.2's stiff contact lets a robot slip along a concave edge where Coulomb
-// friction holds it: docs/rollouts.md).
+// and never class the verifier gives. In the check's default scene, the rollouts' own (sim/rollout.h
+// calibrated_scene: the soft surface layer that makes concave edges follow Coulomb, with the seam filter for
+// the T-slot's plate boxes) every atom kind of cube, hole and tslot is checked; in the old stiff scene
+// (--scene stiff) faces and vertices (MuJoCo 2.2's stiff contact lets a robot slip along a concave edge
+// where Coulomb friction holds it: docs/rollouts.md).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -36,19 +36,35 @@ TEST(CheckSticking, EveryAtomKindAgreesWithPhysicsInTheCalibratedScene) {
   }
 }
 
-TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheRolloutScene) {
+TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheStiffScene) {
   for (const std::string name : {"cube", "hole"}) {
     int status = -1;
     const auto j = run_json(
-        "check-sticking " + task(name) + " -n 2000 --seed 7 --kinds face --kinds vertex --scene rollout",
+        "check-sticking " + task(name) + " -n 2000 --seed 7 --kinds face --kinds vertex --scene stiff",
         &status);
     EXPECT_EQ(status, 0) << name;
+    EXPECT_EQ(j["scene"], "stiff");
     EXPECT_EQ(j["trials"], 2000);
     EXPECT_EQ(j["disagreements"], 0) << name << ": " << j["disagreeing_trials"].dump();
     // Every class occurs, so both kinds of claim were put to the test.
     EXPECT_GT(j["classes"]["must"].get<int>(), 100) << name;
     EXPECT_GT(j["classes"]["never"].get<int>(), 100) << name;
   }
+}
+
+// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene since 2026-11-26.
+TEST(CheckSticking, RolloutSceneIsTheDefault) {
+  int s1 = -1, s2 = -1;
+  auto a = run_json("check-sticking " + task("hole") + " -n 120 --seed 3", &s1);
+  auto b = run_json("check-sticking " + task("hole") + " -n 120 --seed 3 --scene rollout", &s2);
+  EXPECT_EQ(a["scene"], "soft-layer");
+  EXPECT_EQ(b["scene"], "rollout");
+  for (auto* j : {&a, &b}) {
+    j->erase("seconds");
+    j->erase("scene");
+  }
+  EXPECT_EQ(s1, s2);
+  EXPECT_EQ(a, b);
 }
 
 TEST(CheckSticking, SameResultForAnyThreadCount) {
@@ -65,7 +81,7 @@ TEST(CheckSticking, BadInput) {
   int status = -1;
   run_json("check-sticking " + task("hole") + " -n 10 --kinds corner", &status);
   EXPECT_EQ(status, 2);
-  run_json("check-sticking " + task("hole") + " -n 10 --scene stiff", &status);
+  run_json("check-sticking " + task("hole") + " -n 10 --scene bogus", &status);
   EXPECT_EQ(status, 2);
 }
 

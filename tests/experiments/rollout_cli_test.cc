@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "sim/mjcf_export.h"
 #include "tests/experiments/cmt_runner.h"
 
 namespace {
@@ -100,15 +101,30 @@ TEST(CmtRollout, BadInputExitsWithTwoAndNamesTheKey) {
   EXPECT_NE(d.out.find("motions.v2"), std::string::npos) << d.out;
 }
 
+// The calibration passes in the rollouts' scene (issue 3), and fails in the old stiff one (its concave edge).
 TEST(CmtCalibrateFriction, ReportsTheCriteria) {
   const Result r = run("calibrate-friction --json");
-  ASSERT_TRUE(r.status == 0 || r.status == 1) << r.status;
+  EXPECT_EQ(r.status, 0);
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"cases", "agree", "max_creep", "max_speed_error", "max_penetration"})
+  for (const char* key : {"cases", "agree", "passed", "max_creep", "max_loading_creep", "max_speed_error",
+                          "max_penetration", "scene", "timestep"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_GT(j["cases"].size(), 200u);
+  EXPECT_TRUE(j["cases"][0].contains("loading_creep"));
   EXPECT_TRUE(j["agree"].get<bool>());
-  EXPECT_EQ(r.status, j["passed"].get<bool>() ? 0 : 1);
+  EXPECT_TRUE(j["passed"].get<bool>());
+  EXPECT_EQ(j["scene"], "rollout");
+  EXPECT_EQ(j["timestep"], cmt::kSoftLayerTimestep);
+
+  const Result stiff = run("calibrate-friction --scene stiff --json");
+  EXPECT_EQ(stiff.status, 1);
+  const auto k = nlohmann::json::parse(stiff.out);
+  EXPECT_EQ(k["scene"], "stiff");
+  EXPECT_TRUE(k["agree"].get<bool>());
+  EXPECT_FALSE(k["passed"].get<bool>());
+
+  EXPECT_EQ(run("calibrate-friction --scene bogus --json").status, 2);
+  EXPECT_EQ(run("calibrate-friction --soft-layer --scene stiff --json").status, 2);
 }
 
 }  // namespace
