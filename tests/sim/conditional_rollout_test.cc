@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 #include "models/loaded_task.h"
 #include "sim/rollout.h"
@@ -14,7 +15,7 @@ namespace {
 
 StrategyNode node_with_tests(bool with_else) {
   StrategyNode n;
-  n.motion = "m";
+  n.motion = std::string(1, 'm');  // not = "m": g++ 12 -Wrestrict false positive (GCC bug 105329)
   StrategyBranch in_box;
   in_box.when.position.push_back({Vec3(0, 0, 0), Vec3(1, 1, 1)});
   in_box.first = 1;
