@@ -30,7 +30,7 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
   cmd->add_option(
          "--scene", options->scene,
          "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene), rollout "
-         "(the rollouts' scene: the same since 2026-11-26) or stiff (sim/rollout.h stiff_scene, the "
+         "(the rollouts' scene: the same since 2026-11-25) or stiff (sim/rollout.h stiff_scene, the "
          "rollouts' scene before)")
       ->check(CLI::IsMember({"soft-layer", "rollout", "stiff"}));
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");

@@ -13,14 +13,13 @@
 namespace cmt {
 
 // The soft-surface-layer scene (soft_layer_scene(), docs/mujoco-scene.md "Concave edges and the soft surface
-// layer"): it meets every calibration criterion of the velocity forms at concave edges, but is not the
-// default: the position form still creeps along a concave edge while its load grows (the compliant contact
-// sinks into one face, which is sliding along the other; docs/rollouts.md "The position form in concave
-// edges"), and its bouncing slides make rollout end points more sensitive to rounding (docs/rollouts.md
-// "Rollouts are chaotic at the 1e-3 in level").
+// layer"): with the seam filter it is the rollouts' scene (sim/rollout.h calibrated_scene()), the one in
+// which `cmt calibrate-friction` passes every criterion, at concave edges too (docs/rollouts.md
+// "Calibration"). The exporter's own defaults (MjcfOptions{}) stay the stiff contact at 1 ms.
+
 // Integration step, s. With the soft surface layer below, 0.5 ms left the admittance loop erratic in concave
-// edges (sliding 18 % off Coulomb there, 2.3 % on a face); at 0.25 ms every calibration criterion of the
-// velocity forms holds (docs/rollouts.md "Calibration"). Contacts have a time constant of 2 steps, so they
+// edges (sliding 18 % off Coulomb there, 2.3 % on a face); at 0.25 ms every calibration criterion holds
+// (docs/rollouts.md "Calibration"). Contacts have a time constant of 2 steps, so they
 // are also 2x stiffer than at 0.5 ms. Cost: 2x the steps of 0.5 ms.
 inline constexpr double kSoftLayerTimestep = 0.00025;
 // Impedance at the surface: a contact 0-1 um deep is soft (d = 0.01: 99 % of its force is the soft

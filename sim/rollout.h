@@ -24,13 +24,14 @@ class MujocoModel;  // sim/mujoco_guard.h (MuJoCo stays out of this header)
 class MujocoData;
 
 // A rollout's end point is attributed to the lowest-dimensional atom within this fraction of the scene scale
-// (CSpace::nearest_atom), else to free space. A robot at rest sits ~1e-7 m inside a face and a sliding one
-// hops by up to ~1.5e-6 m (docs/mujoco-scene.md); 1e-4 of the scene (hole: 1.8e-3 in = 4.6e-5 m) is 30x the
-// largest hop, and small against every feature of the built-in tasks. The same tolerance decides success
-// (distance to a goal region).
+// (CSpace::nearest_atom), else to free space. A robot at rest sits <= ~1e-6 m inside a face (within the
+// rollouts' 1 um soft layer: <= 1.04e-6 m under the calibration's loads) and one sliding at 1 cm/s hops by up
+// to ~1.5e-6 m (docs/mujoco-scene.md); 1e-4 of the scene (hole: 1.8e-3 in = 4.6e-5 m) is 30x that, and
+// small against every feature of the built-in tasks. The same tolerance decides success (distance to a goal
+// region).
 inline constexpr double kAtomRelativeTolerance = 1e-4;
 // A rollout is unstable when the penetration into the C-obstacles exceeds this fraction of the scene scale
-// (hole: 0.018 in = 4.6e-4 m, ~10x the deepest impact measured in the hole rollouts), when a state becomes
+// (hole: 0.018 in = 4.6e-4 m, ~20x the deepest impact measured in the hole rollouts), when a state becomes
 // NaN or infinite, when MuJoCo raises a warning or an error, or when the robot leaves the bounds by more
 // than that.
 inline constexpr double kUnstablePenetrationRelative = 1e-3;
@@ -48,7 +49,7 @@ inline MjcfOptions calibrated_scene() {
   return o;
 }
 
-// The rollouts' scene until 2026-11-26, kept for comparisons (`cmt calibrate-friction --scene stiff`,
+// The rollouts' scene until 2026-11-25, kept for comparisons (`cmt calibrate-friction --scene stiff`,
 // `cmt check-sticking --scene stiff`): the exporter's stiff contact (d = 0.99 at every depth) at a 0.5 ms
 // step, with the seam filter. It meets every calibration criterion on a face (sliding within 1.4 % of
 // Coulomb, penetration at 1 in/s <= 6.3e-6 m) but not in a concave edge: sliding there runs up to 73 % off
@@ -65,7 +66,8 @@ struct SimOptions {
   ControllerForm form = ControllerForm::kAdmittance;
   SampleMode mode = SampleMode::kUniform;
   // The MuJoCo scene: calibrated_scene() (above). It takes 2x the steps of stiff_scene() (0.25 vs 0.5 ms)
-  // and more solver work per step (docs/rollouts.md "Speed").
+  // and more solver work per step: 2.1-3.1x the CPU time per rollout of the stiff scene (docs/rollouts.md
+  // "Concave edges: the soft-surface-layer scene").
   MjcfOptions scene = calibrated_scene();
   // Spring rate lambda (1/s): time constant 0.25 s = 25 servo time constants, so the robot is first order on
   // the motion's time scale (Buckley §3.1), and the lag that remains is compensated (controller.h).

@@ -52,7 +52,7 @@ TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheStiffScene) {
   }
 }
 
-// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene since 2026-11-26.
+// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene since 2026-11-25.
 TEST(CheckSticking, RolloutSceneIsTheDefault) {
   int s1 = -1, s2 = -1;
   auto a = run_json("check-sticking " + task("hole") + " -n 120 --seed 3", &s1);

@@ -165,7 +165,7 @@ TEST(Calibration, PositionFormSticksWithoutCreepAtConstantLoad) {
   EXPECT_EQ(sliding, 18);
 }
 
-// The old stiff scene (stiff_scene(), the rollouts' scene until 2026-11-26) meets every criterion on a face
+// The old stiff scene (stiff_scene(), the rollouts' scene until 2026-11-25) meets every criterion on a face
 // but not in the concave edge: why it is no longer the default (docs/rollouts.md "Concave edges").
 TEST(Calibration, StiffSceneFailsOnlyAtTheConcaveEdge) {
   const CalibrationResult r = calibrate_friction(
