@@ -44,6 +44,7 @@ class SpecParser {
     spec.text = text;
     if (root.has("description")) spec.description = root.at("description").string();
     spec.n = static_cast<int>(root.at("n").integer(1, kMaxSweepRollouts));
+    spec_n_ = spec.n;
     const SpecNode seeds = root.at("seeds").list();
     for (std::size_t i = 0; i < seeds.size(); ++i) {
       const auto seed = static_cast<std::uint64_t>(seeds.item(i).integer(0, kMaxSweepSeed));
@@ -84,8 +85,9 @@ class SpecParser {
 
  private:
   SweepTaskEntry parse_task(const SpecNode& n) const {
-    n.require_map({"file", "strategies", "grid", "random"});
+    n.require_map({"file", "strategies", "n", "grid", "random"});
     SweepTaskEntry entry;
+    entry.n = n.has("n") ? static_cast<int>(n.at("n").integer(1, kMaxSweepRollouts)) : spec_n_;
     entry.spec_key = n.path();
     const SpecNode file = n.at("file");
     entry.file = (base_dir_ / file.string()).lexically_normal();
@@ -254,6 +256,7 @@ class SpecParser {
   std::string file_;
   std::filesystem::path base_dir_;
   ControllerForm controller_ = ControllerForm::kImpedance;
+  int spec_n_ = 0;  // the spec's `n`, the default of every task entry
 };
 
 }  // namespace

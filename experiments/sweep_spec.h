@@ -33,6 +33,7 @@ struct SweepTaskEntry {
   std::string base_yaml;       // the task file's text
   Task base;                   // ... parsed
   std::vector<std::string> strategies;
+  int n = 0;                         // rollouts per unit of this entry: its `n`, else the spec's
   std::vector<ParamSet> param_sets;  // grid points x random draws; one empty set without either
 };
 

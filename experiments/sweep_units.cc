@@ -63,7 +63,7 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
         for (const std::uint64_t seed : spec.seeds) {
           SweepUnit u;
           u.unit_key =
-              make_unit_key(yaml, strategy, spec.n, seed, spec.mode, spec.controller, spec.sticking_trials,
+              make_unit_key(yaml, strategy, entry.n, seed, spec.mode, spec.controller, spec.sticking_trials,
                             spec.counterexample_budget, spec.verify_budget_seconds);
           if (!keys.insert(u.unit_key).second) {
             ++dropped;
@@ -75,7 +75,7 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
           u.task_yaml = yaml;
           u.strategy = strategy;
           u.params = params_json(params);
-          u.n = spec.n;
+          u.n = entry.n;
           u.seed = seed;
           u.mode = spec.mode;
           u.controller = spec.controller;

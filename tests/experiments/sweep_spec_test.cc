@@ -119,6 +119,25 @@ TEST(SweepSpec, ControllerFormIsAUnitField) {
   }
 }
 
+TEST(SweepSpec, ATaskEntryMayOverrideTheRolloutCount) {
+  // The spec's n (10) is every entry's default; an entry's own n replaces it for that entry's units only,
+  // and the count is part of the unit key (another count is another result).
+  const std::string spec = "n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks +
+                           "\n    strategies: [down]\n    n: 3\n  - file: " + kTwoBlocks +
+                           "\n    strategies: [slide]\n";
+  const auto units = expand_units(parse(spec));
+  ASSERT_EQ(units.size(), 2u);
+  EXPECT_EQ(units[0].strategy, "down");
+  EXPECT_EQ(units[0].n, 3);
+  EXPECT_EQ(units[1].strategy, "slide");
+  EXPECT_EQ(units[1].n, 10);
+  const auto plain = expand_units(parse(two_blocks_spec("")));
+  ASSERT_EQ(plain[0].strategy, "down");
+  EXPECT_NE(plain[0].unit_key, units[0].unit_key);
+  expect_error(two_blocks_spec("    n: 0\n"), "tasks[0].n", "must be in [1, 10000000]");
+  expect_error(two_blocks_spec("    n: many\n"), "tasks[0].n", "expected an integer");
+}
+
 TEST(SweepSpec, GridExpandsInDocumentedOrder) {
   const SweepSpec spec =
       parse(two_blocks_spec("    grid:\n      friction: [0.2, 0.3]\n      theta_v: [0.1, 0.2, 0.24]\n",
