@@ -27,11 +27,10 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--threads", options->threads, "worker threads")->check(CLI::PositiveNumber);
   cmd->add_option("--kinds", options->kinds, "atom kinds to test (face, edge, vertex; default all)")
       ->check(CLI::IsMember({"face", "edge", "vertex"}));
-  cmd->add_option(
-         "--scene", options->scene,
-         "MuJoCo scene: soft-layer (default: Coulomb at concave edges, sticking_check_scene), rollout "
-         "(the rollouts' scene: the same since 2026-11-25) or stiff (sim/rollout.h stiff_scene, the "
-         "rollouts' scene before)")
+  cmd->add_option("--scene", options->scene,
+                  "MuJoCo scene: soft-layer (default: the rollouts' calibrated scene, Coulomb at concave "
+                  "edges), rollout (the same since 2026-11-25) or stiff (sim/rollout.h stiff_scene, the "
+                  "rollouts' scene before)")
       ->check(CLI::IsMember({"soft-layer", "rollout", "stiff"}));
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([options, &state] {
@@ -43,7 +42,7 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       };
       kinds = {has("face"), has("edge"), has("vertex")};
     }
-    SimOptions sim = sticking_check_scene();
+    SimOptions sim;  // the rollouts' Coulomb-calibrated scene
     if (options->scene == "stiff") sim.scene = stiff_scene();
     const StickingCheckResult r =
         check_sticking(task, options->n, options->seed, options->threads, kinds, sim);

@@ -195,6 +195,4 @@ nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckRe
           {"seconds", r.seconds}};
 }
 
-SimOptions sticking_check_scene() { return SimOptions{}; }
-
 }  // namespace cmt

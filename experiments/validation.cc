@@ -117,9 +117,8 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
 
   if (options.sticking_trials > 0) {
     start = std::chrono::steady_clock::now();
-    // The Coulomb-calibrated scene, as cmt check-sticking (experiments/sticking_check.h).
-    r.sticking = check_sticking(task, options.sticking_trials, options.seed, r.options.threads, {},
-                                sticking_check_scene());
+    // The rollouts' Coulomb-calibrated scene, as cmt check-sticking (experiments/sticking_check.h).
+    r.sticking = check_sticking(task, options.sticking_trials, options.seed, r.options.threads);
     r.sticking_seconds = seconds_since(start);
   }
   return r;

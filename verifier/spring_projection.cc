@@ -495,8 +495,6 @@ class SpringProjector {
   std::vector<PolygonSet2> strong_;
   std::vector<Points2> strong_poly_;
   std::vector<PolygonSet2> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
-  std::vector<std::vector<EdgeInterval>> stay_components_;
-  static constexpr bool kEdgeStay = false;  // per edge (edge_stay_components)
   std::vector<Points2> weak_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
   std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;

@@ -31,6 +31,23 @@ double face_speed(const std::shared_ptr<const RolloutScene>& scene, const Vec3& 
   return (end - mid).head<2>().norm() / 0.08;
 }
 
+// A damper from `start` (C-space, on tslot's top) toward `dir` (mu = .48, alpha from the inward normal -z):
+// with the filter it slides at Coulomb's V (sin alpha - mu cos alpha) within kMaxSpeedError; without it the
+// ghost contact holds it (below kSlideThreshold of V).
+void expect_slides_only_with_the_filter(const Vec3& start, const Vec3& dir) {
+  const auto tslot = builtin("tslot");
+  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  const auto filtered = RolloutScene::build(tslot, options);
+  const double v = filtered->controller_params().damper_speed;
+  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
+  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
+  options.scene.seam_filter_relative = 0;
+  const auto raw = RolloutScene::build(tslot, options);
+  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+}
+
 // tslot (physical form): the crossbar [x - 2, x + 2] x [y - 1, y + 1] on the lip at C-space (1, -3.35, 0) has
 // its right end exactly on the seam x = 3 between the front lip [-3, 3] x [-8, -2] and the right lip [3, 8] x
 // [-8, 8] (the whole crossbar lies at y < -2, where the front lip covers the right lip's face x = 3).
@@ -39,20 +56,8 @@ double face_speed(const std::shared_ptr<const RolloutScene>& scene, const Vec3& 
 // a contact with normal -x on the right lip's internal face x = 3, because the crossbar overlapped it by less
 // than it had sunk into the lip.
 TEST(SeamFilter, RobotSlidesAcrossAPhysicalSeamAsCoulombSays) {
-  const auto tslot = builtin("tslot");
-  const Vec3 start(1, -3.3456529039197758, 0);
-  const Vec3 dir(0.583184829559215, -0.30321768744108485, -0.7536275529695486);
-  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));  // from the inward normal -z
-  SimOptions options;
-  options.form = ControllerForm::kImpedance;
-  const auto filtered = RolloutScene::build(tslot, options);
-  const double v = filtered->controller_params().damper_speed;
-  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
-  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
-  // The ghost contact without the filter: stuck.
-  options.scene.seam_filter_relative = 0;
-  const auto raw = RolloutScene::build(tslot, options);
-  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+  expect_slides_only_with_the_filter(Vec3(1, -3.3456529039197758, 0),
+                                     Vec3(0.583184829559215, -0.30321768744108485, -0.7536275529695486));
 }
 
 // tslot, C-space (-1, -2.43, 0) (check-sticking seed 7, trial 100): the crossbar [-3, 1] x [-3.43, -1.43]
@@ -64,19 +69,8 @@ TEST(SeamFilter, RobotSlidesAcrossAPhysicalSeamAsCoulombSays) {
 // Commanded at alpha = 0.521 rad (> phi = 0.448) toward -x, -y, Coulomb says it slides at V (sin alpha - mu
 // cos alpha) = 0.081 V.
 TEST(SeamFilter, RobotFlushWithAWallSlidesOnTheFaceItRestsOn) {
-  const auto tslot = builtin("tslot");
-  const Vec3 start(-1, -2.4291200376125888, 0);
-  const Vec3 dir(-0.24383383696211847, -0.4339940678248832, -0.8672913057589945);
-  const double mu = 0.48, alpha = std::acos(dir.dot(-Vec3::UnitZ()));
-  SimOptions options;
-  options.form = ControllerForm::kImpedance;
-  const auto filtered = RolloutScene::build(tslot, options);
-  const double v = filtered->controller_params().damper_speed;
-  const double coulomb = v * (std::sin(alpha) - mu * std::cos(alpha));
-  EXPECT_NEAR(face_speed(filtered, start, dir), coulomb, kMaxSpeedError * coulomb);
-  options.scene.seam_filter_relative = 0;
-  const auto raw = RolloutScene::build(tslot, options);
-  EXPECT_LT(face_speed(raw, start, dir), kSlideThreshold * v);
+  expect_slides_only_with_the_filter(Vec3(-1, -2.4291200376125888, 0),
+                                     Vec3(-0.24383383696211847, -0.4339940678248832, -0.8672913057589945));
 }
 
 // Where no face is internal the filter drops nothing: the calibration's floor and wall (whose concave edge is
