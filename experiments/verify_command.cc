@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <map>
 
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
@@ -77,8 +78,11 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
     }
     if (s.unmatched) j["unmatched"] = pieces_json(lt, s.unmatched->pieces());
   }
-  nlohmann::json out = {
-      {"task", lt.task.name}, {"reliable", r.reliable}, {"steps", steps}, {"seconds", seconds}};
+  nlohmann::json out = {{"task", lt.task.name},
+                        {"reliable", r.reliable},
+                        {"steps", steps},
+                        {"seconds", seconds},
+                        {"spring_model", spring_model_name(r.spring_model)}};
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;
@@ -93,6 +97,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
   struct Options {
     std::string task, strategy, motion;
     bool reached = false;
+    SpringModel spring_model = SpringModel::kVelocity;
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -103,6 +108,13 @@ void add_verify_command(CLI::App& app, CommandState& state) {
   strategy->excludes(motion);
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->add_flag("--reached", options->reached, "also list every reached contact point per motion");
+  cmd->add_option("--spring-model", options->spring_model,
+                  "spring trajectory model: velocity (the impedance/admittance forms: sensing offset fixed "
+                  "during a motion; default) or via-point (Buckley App. B, the position form)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, SpringModel>{{"velocity", SpringModel::kVelocity},
+                                                                     {"via-point", SpringModel::kViaPoint}},
+                                  CLI::ignore_case));
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
@@ -120,7 +132,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     }
     VerifyResult result;
     try {
-      result = verify_strategy(*task, strategy);
+      result = verify_strategy(*task, strategy, VerifyOptions{options->spring_model});
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;

@@ -56,6 +56,8 @@ void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
   *w = n.cross(*u);
 }
 
+}  // namespace
+
 // Chart offsets of a polygon circumscribing the disk of radius r in the plane with normal n.
 std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r) {
   Vec3 u, w;
@@ -106,8 +108,6 @@ Points2 minkowski_outward(const Points2& points, const std::vector<Vector2>& off
   for (const Inexact::Point_2& h : hull) out.emplace_back(h.x(), h.y());
   return out;
 }
-
-}  // namespace
 
 std::vector<Point3> spring_generators(const std::vector<Point3>& source, const Vec3& p, double eps_o) {
   std::vector<Vec3> from;

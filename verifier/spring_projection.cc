@@ -16,6 +16,7 @@
 
 #include "verifier/internal/fixpoint.h"
 #include "verifier/internal/spring_flight.h"
+#include "verifier/internal/spring_velocity.h"
 #include "verifier/spring.h"
 
 namespace cmt {
@@ -25,15 +26,17 @@ using namespace fp;
 
 class SpringProjector {
  public:
-  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p)
+  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model)
       : c_(lt.cspace),
         u_(lt.task.uncertainty),
         p_(p),
+        model_(model),
         eps_t_(eps_t(u_)),
         eps_o_(eps_o(u_)),
         tan_v_(std::tan(u_.theta_v)),
         reached_(c_),
         r_(reached_.impl()) {
+    if (model_ == SpringModel::kVelocity) vm_ = {p_, u_, velocity_reach_bound(c_, start, p_, u_)};
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
@@ -125,7 +128,10 @@ class SpringProjector {
     pend_new_[fi].join(added);
     if (++face_growths_[fi] == kSpringWideningRounds) {  // widening: the whole face (a superset)
       ++widened_;
-      add_reached_region(fi, PolygonSet2(to_polygon(r_.face_polygon[fi])));
+      // The velocity model bounds every point of the motion by the reach ball: the face's part inside it.
+      const Points2 whole =
+          model_ == SpringModel::kVelocity ? velocity_reach_section(r_, fi, vm_) : r_.face_polygon[fi];
+      if (whole.size() >= 3) add_reached_region(fi, PolygonSet2(to_polygon(whole)));
     }
   }
   void add_reached_lower(int fi, const Points2& pts) {
@@ -255,6 +261,17 @@ class SpringProjector {
     }
     const Points2 entry_hull = hull_or_points(entry_pts);
     if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
+    if (model_ == SpringModel::kVelocity) {
+      Points2 lower;
+      PolygonSet2 slid = velocity_slide(r_, fi, entry_hull, vm_, &lower);
+      if (!slid.is_empty()) {
+        slid.difference(no_slide_[fi]);
+        add_reached_region(fi, slid);
+      } else if (!lower.empty()) {
+        add_reached_lower(fi, lower);
+      }
+      return;
+    }
     const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_,
                                        in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {
@@ -313,7 +330,11 @@ class SpringProjector {
 
   void fly(const std::vector<Point3>& src, int source_face) {
     flew_ = true;
-    for (FlightHit& h : spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_)) {
+    std::vector<FlightHit> hits =
+        model_ == SpringModel::kVelocity
+            ? velocity_fly(r_, src, source_face, vm_)
+            : spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_);
+    for (FlightHit& h : hits) {
       if (!h.region.is_empty())
         add_entry_region(h.face, h.region);
       else
@@ -335,7 +356,8 @@ class SpringProjector {
       const double mid = 0.5 * (lo + hi);
       (f(mid) <= 0 ? lo : hi) = mid;
     }
-    return std::max(hi, eps_o_) * (1 + kSpringRelativeSlack);
+    // The via-point model may overshoot q by eps_o; the velocity forms do not overshoot p*.
+    return std::max(hi, model_ == SpringModel::kVelocity ? 0.0 : eps_o_) * (1 + kSpringRelativeSlack);
   }
 
   // Staying on an edge (Buckley §3.3.2 applied to edge contact): the robot keeps an edge contact only while
@@ -486,7 +508,9 @@ class SpringProjector {
   const CSpace& c_;
   Uncertainty u_;
   Vec3 p_;
+  SpringModel model_;
   double eps_t_, eps_o_, tan_v_;
+  VelocitySpring vm_;  // the velocity model's shared data (kVelocity only)
   ReachedSet reached_;
   ReachedSet::Impl& r_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
@@ -511,8 +535,13 @@ class SpringProjector {
 
 double spring_rest_radius(const Uncertainty& u) { return std::max(u.eps_p, u.eps_s); }
 
-SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p) {
-  return SpringProjector(task, start, p).run();
+const char* spring_model_name(SpringModel m) {
+  return m == SpringModel::kVelocity ? "velocity" : "via-point";
+}
+
+SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
+                                        SpringModel model) {
+  return SpringProjector(task, start, p, model).run();
 }
 
 }  // namespace cmt

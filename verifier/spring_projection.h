@@ -10,6 +10,15 @@
 
 namespace cmt {
 
+// Which trajectory model bounds the spring's paths (docs/verifier.md):
+//   kViaPoint: Buckley's App. B via-point model (eps_t cylinders, eps_o overshoot; the sensing and
+//              positioning errors may change at every replanning), the model of the position form (eq. 3.25);
+//   kVelocity: the velocity forms (impedance eq. 3.13, admittance eq. 3.24): the velocity lies within
+//              theta_v of p* − x for a p* within eps_s of p that is fixed during the motion (the sensing
+//              offset is a bias); bounded by logarithmic spirals about p* (internal/spring_velocity.h).
+enum class SpringModel { kViaPoint, kVelocity };
+const char* spring_model_name(SpringModel m);
+
 struct SpringProjection {
   ReachedSet reached;              // every contact point reachable from the start (the start included)
   ReachedSet termination;          // reached points where sticking is possible (weak sticking configurations)
@@ -39,6 +48,7 @@ inline constexpr int kMaxSpringFixpointSteps = 20000;
 // larger of the two.
 double spring_rest_radius(const Uncertainty& u);
 
-SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p);
+SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
+                                        SpringModel model = SpringModel::kViaPoint);
 
 }  // namespace cmt

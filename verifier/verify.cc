@@ -12,10 +12,10 @@ namespace {
 
 // One motion's termination set from `start` (damper Alg 4.1, spring Alg 4.4, plus §4.5 sensing).
 VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& motion,
-                    const ReachedSet& start) {
+                    const ReachedSet& start, const VerifyOptions& options) {
   VerifyStep step{motion.name, ReachedSet(lt.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
-    SpringProjection p = forward_project_spring(lt, start, motion.target);
+    SpringProjection p = forward_project_spring(lt, start, motion.target, options.spring_model);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;
@@ -48,9 +48,14 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
 
 class StrategyVerifier {
  public:
-  StrategyVerifier(const LoadedTask& lt, const Strategy& strategy)
-      : lt_(lt), strategy_(strategy), cones_(lt.cspace), goal_(ReachedSet::from_regions(lt, lt.task.goal)) {
+  StrategyVerifier(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options)
+      : lt_(lt),
+        strategy_(strategy),
+        options_(options),
+        cones_(lt.cspace),
+        goal_(ReachedSet::from_regions(lt, lt.task.goal)) {
     out_.node_step.assign(strategy.nodes.size(), -1);
+    out_.spring_model = options.spring_model;
   }
 
   VerifyResult run() {
@@ -82,7 +87,7 @@ class StrategyVerifier {
     const StrategyNode& node = strategy_.nodes[static_cast<std::size_t>(node_id)];
     const Motion* motion = lt_.task.find_motion(node.motion);
     if (!motion) throw TaskError(lt_.task.source_file, "motions", "no motion named '" + node.motion + "'");
-    VerifyStep step = simulate(lt_, cones_, *motion, start);
+    VerifyStep step = simulate(lt_, cones_, *motion, start, options_);
     step.node = node_id;
     step.parent = parent_step;
     step.branch = branch;
@@ -148,6 +153,7 @@ class StrategyVerifier {
 
   const LoadedTask& lt_;
   const Strategy& strategy_;
+  const VerifyOptions options_;
   const AtomCones cones_;
   const ReachedSet goal_;
   VerifyResult out_;
@@ -155,12 +161,14 @@ class StrategyVerifier {
 
 }  // namespace
 
-VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names) {
-  return verify_strategy(lt, Strategy::sequence("", names));  // unknown names: TaskError from simulate_node
+VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names,
+                            const VerifyOptions& options) {
+  // unknown names: TaskError from simulate_node
+  return verify_strategy(lt, Strategy::sequence("", names), options);
 }
 
-VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy) {
-  return StrategyVerifier(lt, strategy).run();
+VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options) {
+  return StrategyVerifier(lt, strategy, options).run();
 }
 
 }  // namespace cmt

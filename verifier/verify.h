@@ -14,6 +14,7 @@
 
 #include "models/loaded_task.h"
 #include "verifier/reached_set.h"
+#include "verifier/spring_projection.h"
 
 namespace cmt {
 
@@ -66,6 +67,7 @@ struct VerifyStep {
 // node has its prediction); the first failure is the one reported.
 struct VerifyResult {
   bool reliable = false;
+  SpringModel spring_model = SpringModel::kViaPoint;  // the model the spring motions were simulated with
   std::vector<VerifyStep> steps;
   int failed_step = -1;  // index into steps, or -1
   std::string failure;   // why, when unreliable
@@ -85,8 +87,17 @@ struct VerifyResult {
 // regions are compared exactly.
 inline constexpr double kGoalRelativeTolerance = 1e-6;
 
+// How the motions are modelled. The spring model must match the controller form whose rollouts the prediction
+// is compared with (experiments/verifier_model.h): kVelocity for the impedance and admittance forms,
+// kViaPoint (Buckley's App. B) for the position form.
+struct VerifyOptions {
+  SpringModel spring_model = SpringModel::kViaPoint;
+};
+
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.
-VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions);
-VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy);
+VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions,
+                            const VerifyOptions& options = {});
+VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy,
+                             const VerifyOptions& options = {});
 
 }  // namespace cmt

@@ -44,4 +44,10 @@ Points2 spring_strip(const ReachedSet::Impl& geometry, int face_index, const Poi
 Points2 chart_disk(const ReachedSet::Impl& geometry, int face_index, const Vec3& center, double r,
                    bool outer);
 
+// Chart offsets of the kSpringDiskSides-gon circumscribing the disk of radius r in the plane with normal n.
+std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r);
+
+// conv(points) ⊕ conv(offsets), rounded outward to double vertices (a superset of the exact sum).
+Points2 minkowski_outward(const Points2& points, const std::vector<Vector2>& offsets);
+
 }  // namespace cmt::fp

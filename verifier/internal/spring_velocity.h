@@ -1,0 +1,67 @@
+// Private to verifier/ .cc files: the generalized spring under the velocity-form error model
+// (docs/verifier.md, "Velocity-form spring model"): the robot's velocity (in contact: the force it imparts)
+// lies within theta_v of p* − x, where p* = p − b is the commanded position moved by the sensing offset b,
+// |b| <= eps_s, which is constant during a motion (a bias; controllers/error_model.h draws it once per
+// motion). This is the model of the impedance and admittance forms (Buckley eq. 3.13 / 3.24 through a
+// velocity controller); Buckley's via-point tubes (eps_t, eps_o; spring_flight.h) model the position form
+// (eq. 3.25).
+//
+// Facts used (proved in the doc): in free flight |x − p*| never grows, the angle psi at p* between x(t) − p*
+// and x(0) − p* obeys psi <= tan(theta_v) ln(|x(0) − p*| / |x(t) − p*|), so the path stays within delta
+// |x(0) − p*| of seg[x(0), p*] (spring_spiral_deviation), and it stays in the cone x(0) + cone(p* − x(0),
+// theta_v). Sliding on a face, the in-plane velocity is within beta(d) = asin(sin(theta_v) sqrt(d^2 + h*^2) /
+// d) of the direction to p*' (d: in-plane distance, h*: depth of p* below the face), so the same laws hold in
+// the plane with beta(d) while d > h* tan(theta_v) (the zone), and d never exceeds max(d(0), zone).
+#pragma once
+
+#include <vector>
+
+#include "verifier/internal/flight.h"
+
+namespace cmt::fp {
+
+// A cone whose half-angle reaches pi/2 − this (rad) is not used as a bound (it would not be pointed).
+inline constexpr double kVelocityPointedMargin = 0.05;
+// Flight sources are cut into pieces of angular radius <= kVelocityMaxSpread (rad) about their mean
+// direction from p, and of radial extent <= eps_s / (4 delta), at most kVelocityMaxPieces per source (past
+// it the remaining pieces are flown as they are: sound, looser).
+inline constexpr double kVelocityMaxSpread = 0.1;
+inline constexpr int kVelocityMaxPieces = 64;
+// In-plane directions of the support half-planes bounding a convex set's section by a face plane (an outer
+// polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
+inline constexpr int kVelocitySupportDirections = 32;
+
+// delta(theta_v) = max(max_b e^(−b / tan theta_v) sin b, e^(−pi / (2 tan theta_v))) = e^(−theta_v / tan
+// theta_v) sin(theta_v): a free path from x toward a fixed p* stays within delta |x − p*| of seg[x, p*].
+double spring_spiral_deviation(double theta_v);
+
+// What one velocity-form spring motion shares across its flights and slides.
+struct VelocitySpring {
+  Vec3 p;            // commanded position
+  Uncertainty u;     // theta_v (possibly widened, experiments/verifier_model.h) and eps_s are used
+  double reach = 0;  // every point of the motion lies within this distance of p (velocity_reach_bound)
+};
+
+// The distance bound `reach` for a motion from `start` (doc: |x − p*| never grows in flight, nor while
+// sliding outside a face's or an edge's zone, and inside a zone it is at most (dist(p*, plane or line)) /
+// cos(theta_v)).
+double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p,
+                            const Uncertainty& u);
+
+// The part of face fi within m.reach of p (outer polygon; empty if none): what widening may take.
+Points2 velocity_reach_section(const ReachedSet::Impl& geometry, int fi, const VelocitySpring& m);
+
+// Free-space reach from the convex source conv(src): for every face g but `source_face`, per piece X of the
+// source, g ∩ (conv(X ∪ B(p, eps_s)) ⊕ ball(delta (R + eps_s))) ∩ ball(p, min(R + 2 eps_s, reach)) ∩ (X +
+// cone(−a, theta_v + sigma + asin(eps_s / R_min))) (R: max |x − p| over X; a, sigma: X's mean direction
+// from p and angular radius about it). No occlusion (paths bend).
+std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std::vector<Point3>& src,
+                                    int source_face, const VelocitySpring& m);
+
+// Sliding on face fi from the convex chart piece `part` (1, 2 or more points): the face ∩ (conv(part ∪
+// disk(p', eps_s)) ⊕ disk(L)) ∩ disk(p', max(d0, zone) + eps_s) ∩ (the forward wedge ∪ the disk d <= d_w) ∩
+// the reach bound. Returns the region (area) or, when it has none, fills `lower` with a segment or point.
+PolygonSet2 velocity_slide(const ReachedSet::Impl& geometry, int fi, const Points2& part,
+                           const VelocitySpring& m, Points2* lower);
+
+}  // namespace cmt::fp

@@ -1,0 +1,527 @@
+// The generalized spring under the velocity-form error model (verifier/internal/spring_velocity.h; the proofs
+// are in docs/verifier.md, "Velocity-form spring model").
+//
+// Flight. For a source point x and a fixed p* every reached y lies within delta |x − p*| of seg[x, p*] and in
+// the cone x + cone(p* − x, theta_v), and |y − p*| <= |x − p*|. Over a convex source piece X and every p* in
+// B(p, eps): y ∈ conv(X ∪ B(p, eps)) ⊕ ball(delta (R + eps)) (seg[x, p*] lies in conv(x, B(p, eps))), y ∈ X +
+// cone(−a, theta_v + sigma + asin(eps / R_min)) (p* − x is within asin(eps / |x − p|) of p − x, which is
+// within sigma of −a), and |y − p| <= R + 2 eps. All three are convex; their sections by a face plane are
+// computed from support functions (support_section), so a piece's reach on a face is a convex polygon.
+// Sources are cut into pieces so that sigma and the spread of R stay small (the bounds are per piece).
+//
+// Sliding. In the plane the in-plane half-angle beta(d) replaces theta_v: the lateral deviation from
+// seg[e, p*'] is at most L(d0) = max(zone, max_d d sin(min(Psi(d), pi/2))), Psi(d) = the integral of
+// tan(beta(s)) / s from d to d0, and the wedge e + cone(p*' − e, beta(d_w)) holds the path until it enters
+// the disk d <= d_w, which it never leaves (d_w > zone).
+#include "verifier/internal/spring_velocity.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <utility>
+
+#include "verifier/internal/spring_flight.h"
+
+namespace cmt::fp {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Relative slack on angles, radii and bounds computed in floating point (all rounded toward "more").
+constexpr double kSlack = 1e-9;
+// Golden-section steps per support bound (the bracket [−1e3, 1e3] shrinks by 0.618 per step; any lambda is
+// sound, so this only sets how tight the bound is).
+constexpr int kGoldenSteps = 60;
+
+// The support function w -> max { y . w : y in the set } of a convex set (w need not be a unit vector).
+using Support = std::function<double(const Vec3&)>;
+
+void frame(const Vec3& n, Vec3* e1, Vec3* e2) {
+  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  *e1 = n.cross(helper).normalized();
+  *e2 = n.cross(*e1);
+}
+
+double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+
+// Keeps the part of the planar convex polygon `poly` (3-D points) where n . w <= c (Sutherland-Hodgman).
+std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c) {
+  std::vector<Vec3> out;
+  const std::size_t k = poly.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec3& a = poly[i];
+    const Vec3& b = poly[(i + 1) % k];
+    const double sa = n.dot(a) - c, sb = n.dot(b) - c;
+    if (sa <= 0) out.push_back(a);
+    if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) out.push_back(a + (b - a) * (sa / (sa - sb)));
+  }
+  return out;
+}
+
+// Outer polygon (chart coordinates, clipped to the face) of the section of the intersection of convex sets
+// by face fi's plane n . y = c. For a unit in-plane direction v and any lambda, v . y = (v + lambda n) . y −
+// lambda c <= h(v + lambda n) − lambda c on the section, so every lambda gives a sound bound; a
+// golden-section search over the convex function of lambda makes it tight. The polygon is the intersection of
+// kVelocitySupportDirections such half-planes per set, each bound raised by a margin for the rounding of
+// doubles; kGoldenSteps steps of the search.
+Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Support>& sets) {
+  const Face& face = g.cspace->faces()[fi];
+  const Vec3& n = face.normal;
+  const double c = face.offset, scale = g.cspace->scale();
+  const double margin = kSlack * scale;
+  for (const Support& h : sets)
+    if (h(n) < c - margin || -h(-n) > c + margin) return {};  // a set lies on one side of the plane
+  Vec3 e1, e2;
+  frame(n, &e1, &e2);
+  const Vec3 origin = c * n;
+  const double big = 8 * scale + 1;
+  std::vector<std::array<double, 2>> poly = {{-big, -big}, {big, -big}, {big, big}, {-big, big}};
+  for (const Support& h : sets) {
+    for (int j = 0; j < kVelocitySupportDirections && !poly.empty(); ++j) {
+      const double th = 2 * kPi * j / kVelocitySupportDirections;
+      const double cs = std::cos(th), sn = std::sin(th);
+      const Vec3 v = cs * e1 + sn * e2;
+      auto f = [&](double lambda) { return h(v + lambda * n) - lambda * c; };
+      double a = -1e3, b = 1e3;
+      const double r = (std::sqrt(5.0) - 1) / 2;
+      double x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = f(x1), f2 = f(x2);
+      for (int it = 0; it < kGoldenSteps; ++it) {
+        if (f1 <= f2) {
+          b = x2;
+          x2 = x1;
+          f2 = f1;
+          x1 = b - r * (b - a);
+          f1 = f(x1);
+        } else {
+          a = x1;
+          x1 = x2;
+          f1 = f2;
+          x2 = a + r * (b - a);
+          f2 = f(x2);
+        }
+      }
+      const double best = std::min(f1, f2);
+      const double bound = best + margin * (1 + std::abs(best));
+      std::vector<std::array<double, 2>> out;
+      const std::size_t k = poly.size();
+      for (std::size_t i = 0; i < k; ++i) {
+        const auto& P = poly[i];
+        const auto& Q = poly[(i + 1) % k];
+        const double sp = cs * P[0] + sn * P[1] - bound, sq = cs * Q[0] + sn * Q[1] - bound;
+        if (sp <= 0) out.push_back(P);
+        if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) {
+          const double t = sp / (sp - sq);
+          out.push_back({P[0] + t * (Q[0] - P[0]), P[1] + t * (Q[1] - P[1])});
+        }
+      }
+      poly = std::move(out);
+    }
+  }
+  if (poly.empty()) return {};
+  const FaceChart& chart = g.charts[fi];
+  Points2 pts;
+  for (const auto& q : poly) pts.push_back(chart.project(Vec3(origin + q[0] * e1 + q[1] * e2)));
+  // The chart image of the double polygon, rounded outward by the margin (which also covers the rounding of
+  // the double clipping above), on the face.
+  return clip(minkowski_outward(pts, disk_offsets(chart, n, margin)), g.face_polygon[fi]);
+}
+
+Support ball_support(const Vec3& center, double radius) {
+  return [center, radius](const Vec3& w) { return center.dot(w) + radius * w.norm(); };
+}
+
+// A convex source piece (polygon, segment or point, 3-D doubles) cut by the plane n . x = c: the parts on
+// either side, each grown across the plane by `margin` (their union covers the piece).
+std::pair<std::vector<Vec3>, std::vector<Vec3>> cut(const std::vector<Vec3>& piece, const Vec3& n, double c,
+                                                    double margin) {
+  if (piece.size() >= 3)
+    return {clip_halfspace(piece, n, c + margin), clip_halfspace(piece, -n, -c + margin)};
+  if (piece.size() == 2) {
+    const double s0 = n.dot(piece[0]) - c, s1 = n.dot(piece[1]) - c;
+    if (s0 == s1) return {piece, {}};
+    const double t = std::clamp(-s0 / (s1 - s0), 0.0, 1.0);
+    const double len = (piece[1] - piece[0]).norm();
+    const double dt = len > 0 ? margin / len : 0;
+    const Vec3 lo = piece[0] + std::max(0.0, t - dt) * (piece[1] - piece[0]);
+    const Vec3 hi = piece[0] + std::min(1.0, t + dt) * (piece[1] - piece[0]);
+    return {{piece[0], hi}, {lo, piece[1]}};
+  }
+  return {piece, {}};
+}
+
+// In-plane distance from q to the convex polygon `poly` (3-D points in a plane with normal n): 0 inside.
+double distance_in_plane(const std::vector<Vec3>& poly, const Vec3& n, const Vec3& q) {
+  double best = std::numeric_limits<double>::infinity();
+  bool inside = poly.size() >= 3;
+  double orientation = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& a = poly[i];
+    const Vec3& b = poly[(i + 1) % poly.size()];
+    const Vec3 ab = b - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Vec3 d = q - (a + t * ab);
+    best = std::min(best, (d - n.dot(d) * n).norm());
+    const double side = n.dot(ab.cross(q - a));
+    if (orientation == 0) orientation = side;
+    if (side * orientation < 0) inside = false;
+  }
+  return inside ? 0.0 : best;
+}
+
+// One piece's reach (see the file comment) into `regions` / `lowers`.
+void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int source_face,
+               const VelocitySpring& m, double r_lower, std::map<int, std::vector<Polygon2>>* regions,
+               std::map<int, Points2>* lowers) {
+  const double scale = g.cspace->scale();
+  const double eps = m.u.eps_s;
+  const Vec3& p = m.p;
+  double rmax = 0;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& x : piece) {
+    const double r = (x - p).norm();
+    rmax = std::max(rmax, r);
+    if (r > 0) mean += (x - p) / r;
+  }
+  const double ball = std::min(rmax + 2 * eps, m.reach) * (1 + kSlack) + kSlack * scale;
+  std::vector<Support> bounds = {ball_support(p, ball)};
+  if (r_lower > eps * (1 + 1e-6) + kSlack * scale && mean.norm() > 1e-9 * static_cast<double>(piece.size())) {
+    // Tube: conv(piece ∪ B(p, eps)) ⊕ ball(rho).
+    const double rho = spring_spiral_deviation(m.u.theta_v) * (rmax + eps) * (1 + kSlack) + kSlack * scale;
+    bounds.push_back([piece, p, eps, rho](const Vec3& w) {
+      double best = p.dot(w) + eps * (1 + kSlack) * w.norm();
+      for (const Vec3& x : piece) best = std::max(best, x.dot(w));
+      return best + rho * w.norm();
+    });
+    // Forward cone: piece + cone(−a, angle), truncated beyond the scene.
+    const Vec3 a = mean.normalized();
+    double sigma = 0;
+    for (const Vec3& x : piece) sigma = std::max(sigma, angle_between(a, x - p));
+    const double angle = m.u.theta_v + sigma * (1 + kSlack) +
+                         std::asin(std::min(1.0, eps / r_lower)) * (1 + kSlack) + 2 * kSlack;
+    if (angle + kVelocityPointedMargin < kPi / 2) {
+      const FlightCone cone = flight_cone(-a, angle, scale);
+      bounds.push_back([piece, cone](const Vec3& w) {
+        double best = -std::numeric_limits<double>::infinity(), ray = 0;
+        for (const Vec3& x : piece) best = std::max(best, x.dot(w));
+        for (const Vec3& r : cone.rays) ray = std::max(ray, cone.far * r.dot(w));
+        return best + ray;
+      });
+    }
+  }
+  const int nf = static_cast<int>(g.cspace->faces().size());
+  for (int fi = 0; fi < nf; ++fi) {
+    if (fi == source_face) continue;
+    const Points2 section = support_section(g, fi, bounds);
+    if (section.size() < 3 && !section.empty()) {
+      // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving
+      // it is already there; edges and vertices seed their faces themselves, may_enter).
+      const Face& face = g.cspace->faces()[fi];
+      bool on_plane = true;
+      for (const Vec3& x : piece)
+        on_plane = on_plane && std::abs(face.normal.dot(x) - face.offset) <= 1e-9 * scale;
+      if (on_plane) continue;
+    }
+    if (section.size() >= 3)
+      (*regions)[fi].push_back(to_polygon(section));
+    else if (!section.empty() && !lowers->count(fi))
+      (*lowers)[fi] = section;
+  }
+}
+
+// Cuts the convex source `poly` (3-D doubles) into pieces of angular radius <= kVelocityMaxSpread about their
+// mean direction from `center` and of radial extent R_max − R_lower <= radial_limit, where R_lower = the
+// least a . (x − center) over the piece's vertices (a lower bound of |x − center| on the piece: a . (x −
+// center) is linear), and calls fly(piece, R_lower) for each; at most kVelocityMaxPieces pieces (past the
+// budget the rest is taken as it is: sound, looser). Pieces overlap by `margin` across every cut.
+void split_source(const std::vector<Vec3>& poly, const Vec3& center, double eps, double radial_limit,
+                  double margin, const std::function<void(const std::vector<Vec3>&, double)>& fly) {
+  std::vector<std::vector<Vec3>> work = {poly};
+  int pieces = 0;
+  while (!work.empty()) {
+    std::vector<Vec3> piece = std::move(work.back());
+    work.pop_back();
+    if (piece.empty()) continue;
+    Vec3 mean = Vec3::Zero();
+    double rmax = 0;
+    for (const Vec3& x : piece) {
+      const double r = (x - center).norm();
+      rmax = std::max(rmax, r);
+      if (r > 0) mean += (x - center) / r;
+    }
+    const Vec3 a = mean.norm() > 0 ? Vec3(mean.normalized()) : Vec3::UnitZ();
+    double smin = std::numeric_limits<double>::infinity(), smax = -smin, sigma = 0;
+    std::size_t widest = 0;
+    for (std::size_t i = 0; i < piece.size(); ++i) {
+      smin = std::min(smin, a.dot(piece[i] - center));
+      smax = std::max(smax, a.dot(piece[i] - center));
+      const double ang = angle_between(a, piece[i] - center);
+      if (ang > sigma) {
+        sigma = ang;
+        widest = i;
+      }
+    }
+    const bool budget = pieces + static_cast<int>(work.size()) + 2 <= kVelocityMaxPieces;
+    if (budget && piece.size() >= 2 && smin > eps) {
+      Vec3 b = (piece[widest] - center) - a.dot(piece[widest] - center) * a;
+      if (sigma > kVelocityMaxSpread && b.norm() > 0) {  // cut through the center along a, across the widest
+        b.normalize();
+        auto [l, r] = cut(piece, b, b.dot(center), margin);
+        if (!l.empty() && !r.empty()) {
+          work.push_back(std::move(l));
+          work.push_back(std::move(r));
+          continue;
+        }
+      }
+      if (rmax - smin > radial_limit) {  // cut across a at the middle level
+        auto [l, r] = cut(piece, a, a.dot(center) + 0.5 * (smin + smax), margin);
+        if (!l.empty() && !r.empty()) {
+          work.push_back(std::move(l));
+          work.push_back(std::move(r));
+          continue;
+        }
+      }
+    }
+    ++pieces;
+    fly(piece, std::max(0.0, smin) * (1 - kSlack));
+  }
+}
+
+}  // namespace
+
+double spring_spiral_deviation(double theta_v) {
+  if (theta_v <= 0) return 0;
+  const double T = std::tan(theta_v);
+  return std::max(std::exp(-theta_v / T) * std::sin(theta_v), std::exp(-kPi / (2 * T)));
+}
+
+double velocity_reach_bound(const CSpace& c, const ReachedSet& start, const Vec3& p, const Uncertainty& u) {
+  const double eps = u.eps_s, T = std::tan(u.theta_v), cos_v = std::cos(u.theta_v);
+  double v = 0;  // >= |x − p*| for every point of the motion so far
+  for (const ReachedPiece& piece : start.pieces())
+    for (const Vec3& q : piece.polygon) v = std::max(v, (q - p).norm() + eps);
+  // A zone can raise the bound only on an atom the robot can reach at all, i.e. one with a point within v of
+  // p*; iterate until no zone raises it (each round takes in at least one more atom, or stops).
+  const std::size_t nf = c.faces().size(), ne = c.edges().size();
+  std::vector<char> used(nf + ne, 0);
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t i = 0; i < nf; ++i) {
+      if (used[i]) continue;
+      const Face& f = c.faces()[i];
+      const double depth = f.offset - f.normal.dot(p);
+      const Vec3 center = p + depth * f.normal;
+      const double inplane = distance_in_plane(f.polygon, f.normal, center);
+      const double h = std::abs(depth) + eps;
+      if (std::hypot(depth, inplane) > v + eps) continue;  // not reachable within the bound
+      if (inplane > h * T + eps) continue;                 // the zone about p*' misses the face
+      used[i] = 1;
+      if (h / cos_v > v) {
+        v = h / cos_v;
+        grew = true;
+      }
+    }
+    for (std::size_t i = 0; i < ne; ++i) {
+      if (used[nf + i]) continue;
+      const Edge& e = c.edges()[i];
+      const Vec3 d = e.b - e.a;
+      const double len = d.norm();
+      const double t = (p - e.a).dot(d) / (len * len);
+      const double perp = (p - (e.a + t * d)).norm();
+      const double gap = std::max({0.0, -t * len, (t - 1) * len});  // from the projection to the segment
+      if (std::hypot(perp, gap) > v + eps) continue;
+      if (gap > (perp + eps) * T + eps) continue;
+      used[nf + i] = 1;
+      if ((perp + eps) / cos_v > v) {
+        v = (perp + eps) / cos_v;
+        grew = true;
+      }
+    }
+  }
+  return (v + eps) * (1 + kSlack) + kSlack * c.scale();
+}
+
+std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector<Point3>& src,
+                                    int source_face, const VelocitySpring& m) {
+  const double scale = g.cspace->scale();
+  const double eps = m.u.eps_s;
+  const double delta = spring_spiral_deviation(m.u.theta_v);
+  const double margin = kSlack * scale;
+  const Vec3& p = m.p;
+  std::map<int, std::vector<Polygon2>> regions;
+  std::map<int, Points2> lowers;
+  // Cut until each piece has angular radius <= kVelocityMaxSpread about its mean direction from p and a
+  // tube growth delta (R_max − R_lower) <= eps / 4.
+  std::vector<Vec3> poly;
+  for (const Point3& x : src) poly.push_back(to_vec(x));
+  const double radial_limit = delta > 0 ? eps / (4 * delta) : std::numeric_limits<double>::infinity();
+  split_source(poly, p, eps, radial_limit, margin, [&](const std::vector<Vec3>& piece, double r_lower) {
+    fly_piece(g, piece, source_face, m, r_lower, &regions, &lowers);
+  });
+  std::vector<FlightHit> out;
+  for (auto& [face, polys] : regions) {
+    FlightHit hit;
+    hit.face = face;
+    hit.region.join(polys.begin(), polys.end());
+    out.push_back(std::move(hit));
+  }
+  for (auto& [face, lower] : lowers) {
+    if (regions.count(face)) continue;
+    FlightHit hit;
+    hit.face = face;
+    hit.lower = std::move(lower);
+    out.push_back(std::move(hit));
+  }
+  return out;
+}
+
+namespace {
+
+// The slide from one entry piece (file comment).
+PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
+                        Points2* lower) {
+  const CSpace& c = *g.cspace;
+  const Face& face = c.faces()[fi];
+  const FaceChart& chart = g.charts[fi];
+  const double eps = m.u.eps_s, scale = c.scale();
+  const double sin_v = std::sin(m.u.theta_v);
+  const double margin = kSlack * scale;
+  const double h = face.offset - face.normal.dot(m.p);
+  const Vec3 center = m.p + h * face.normal;                     // p'
+  const double H = std::abs(h) + eps;                            // >= |h*|
+  const double zone = H * std::tan(m.u.theta_v) * (1 + kSlack);  // beta(d) = pi/2 for d <= h* tan(theta_v)
+  lower->clear();
+  std::vector<Vec3> in_plane;  // entries − p', in the plane
+  double dmax = 0;
+  Vec3 mean = Vec3::Zero();
+  for (const Point2& q : part) {
+    const Vec3 v = chart.lift_double(q) - center;
+    in_plane.push_back(v - face.normal.dot(v) * face.normal);
+    dmax = std::max(dmax, in_plane.back().norm());
+    if (in_plane.back().norm() > 0) mean += in_plane.back() / in_plane.back().norm();
+  }
+  std::vector<Vec3> lifted_part;
+  for (const Point2& q : part) lifted_part.push_back(chart.lift_double(q));
+  const double dmin = distance_in_plane(lifted_part, face.normal, center) * (1 - kSlack);
+  const double d0 = dmax + eps;  // >= |e − p*'|
+  // tan(beta(s)) / s, decreasing in s for s > zone.
+  auto integrand = [&](double s) {
+    const double sb = std::min(1.0, sin_v * std::hypot(s, H) / s);
+    return sb >= 1 ? std::numeric_limits<double>::infinity() : std::tan(std::asin(sb)) / s;
+  };
+  // L(d0) from upper sums of Psi on a grid: on each cell d sin Psi(d) <= d_hi sin(min(Psi(d_lo), pi/2)).
+  double lateral = zone;
+  if (d0 > zone) {
+    constexpr int kCells = 400;
+    double psi = 0, d_hi = d0;
+    for (int j = 1; j <= kCells; ++j) {
+      const double d_lo = std::max(zone * (1 + 1e-9), d0 - (d0 - zone) * j / kCells);
+      if (d_lo >= d_hi) break;
+      psi += integrand(d_lo) * (d_hi - d_lo);
+      if (psi * (1 + kSlack) >= kPi / 2) {
+        lateral = std::max(lateral, d_hi);
+        break;
+      }
+      lateral = std::max(lateral, d_hi * std::sin(psi * (1 + kSlack)));
+      d_hi = d_lo;
+    }
+  }
+  const Point2 c2 = chart.project(center);
+  // Tube: conv(part ∪ disk(p', eps)) ⊕ disk(L), within max(d0, zone) + eps of p' and within the reach bound.
+  Points2 pts = part;
+  for (const Vector2& o : disk_offsets(chart, face.normal, eps * (1 + kSlack))) pts.push_back(c2 + o);
+  Points2 tube =
+      clip(minkowski_outward(pts, disk_offsets(chart, face.normal, lateral * (1 + kSlack) + margin)),
+           g.face_polygon[fi]);
+  const double reach = std::max(d0, zone) * (1 + kSlack) + eps * (1 + kSlack) + margin;
+  tube = clip(tube, minkowski_outward({c2}, disk_offsets(chart, face.normal, reach)));
+  if (!tube.empty()) {
+    const Points2 bound = support_section(g, fi, {ball_support(m.p, m.reach)});
+    tube = bound.empty() ? bound : clip(tube, bound);
+  }
+  if (tube.size() < 3) {
+    *lower = tube;
+    return PolygonSet2();
+  }
+  PolygonSet2 out(to_polygon(tube));
+  if (dmin <= eps * (1 + 1e-6) + margin || mean.norm() == 0) return out;
+  // Forward wedge ∪ the disk d <= d_w (about p*', so within d_w + eps of p').
+  const Vec3 axis = mean.normalized();
+  const Vec3 axis_perp = face.normal.cross(axis);
+  double spread = 0;
+  for (const Vec3& w : in_plane)
+    spread = std::max(spread, std::abs(std::atan2(w.dot(axis_perp), w.dot(axis))));
+  const double shift = std::asin(std::min(1.0, eps / dmin)) * (1 + kSlack) + kSlack;
+  const double d_w = std::max(0.5 * dmin, 1.5 * zone);
+  const double beta_w = std::asin(std::min(1.0, sin_v * std::hypot(d_w, H) / d_w)) * (1 + kSlack) + kSlack;
+  const double half = beta_w + spread * (1 + kSlack) + shift;
+  if (half + kVelocityPointedMargin >= kPi / 2) return out;
+  const double far = 2 * scale + 1;
+  Points2 wedge_pts;
+  for (const Point2& q : part) {
+    wedge_pts.push_back(q);
+    for (const double sgn : {-1.0, 1.0}) {
+      const Vec3 dir = -(std::cos(half) * axis + sgn * std::sin(half) * axis_perp);
+      wedge_pts.push_back(q + chart.project_direction(far * dir));
+    }
+  }
+  PolygonSet2 allowed;
+  const Points2 wedge = clip(convex_hull(wedge_pts), g.face_polygon[fi]);
+  if (wedge.size() >= 3) allowed.join(to_polygon(wedge));
+  const Points2 inner =
+      clip(minkowski_outward({c2}, disk_offsets(chart, face.normal, (d_w + eps) * (1 + kSlack) + margin)),
+           g.face_polygon[fi]);
+  if (inner.size() >= 3) allowed.join(to_polygon(inner));
+  out.intersection(allowed);
+  return out;
+}
+
+}  // namespace
+
+Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const VelocitySpring& m) {
+  return support_section(g, fi, {ball_support(m.p, m.reach)});
+}
+
+PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
+                           Points2* lower) {
+  lower->clear();
+  if (part.size() < 3) return slide_piece(g, fi, part, m, lower);
+  const Face& face = g.cspace->faces()[fi];
+  const FaceChart& chart = g.charts[fi];
+  const Vec3 center = m.p + (face.offset - face.normal.dot(m.p)) * face.normal;
+  std::vector<Vec3> poly;
+  double dmax = 0;
+  for (const Point2& q : part) {
+    poly.push_back(chart.lift_double(q));
+    dmax = std::max(dmax, (poly.back() - center).norm());
+  }
+  // Radial extent: the lateral bound grows by about L(d0) / d0 per unit of d0 (at most tan of the in-plane
+  // angle, which is >= theta_v); eps / 4 of growth per piece, as for flights.
+  const double radial_limit = m.u.eps_s / (4 * std::max(std::tan(m.u.theta_v), 1e-3));
+  std::vector<Polygon2> polys;
+  Points2 first_lower;
+  split_source(poly, center, m.u.eps_s, radial_limit, kSlack * g.cspace->scale(),
+               [&](const std::vector<Vec3>& piece, double) {
+                 Points2 pts;
+                 for (const Vec3& x : piece) pts.push_back(chart.project(x));
+                 // the chart image of the double piece, rounded outward (covers the cut's rounding)
+                 pts = minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
+                 Points2 piece_lower;
+                 PolygonSet2 region = slide_piece(g, fi, pts, m, &piece_lower);
+                 if (!region.is_empty()) {
+                   std::vector<PolygonWithHoles2> pwhs;
+                   region.polygons_with_holes(std::back_inserter(pwhs));
+                   for (const PolygonWithHoles2& pwh : pwhs) polys.push_back(pwh.outer_boundary());
+                 } else if (!piece_lower.empty() && first_lower.empty()) {
+                   first_lower = piece_lower;
+                 }
+               });
+  PolygonSet2 out;
+  if (!polys.empty()) out.join(polys.begin(), polys.end());
+  if (out.is_empty()) *lower = first_lower;
+  return out;
+}
+
+}  // namespace cmt::fp
