@@ -77,7 +77,8 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
     r.verify_seconds = options.verifier_timed_out_after;
   } else {
     // The widened task has the same strategies and C-space; only its uncertainty differs.
-    r.prediction = verify_strategy(*r.verifier.task, *r.verifier.task->task.find_strategy(strategy_name));
+    r.prediction = verify_strategy(*r.verifier.task, *r.verifier.task->task.find_strategy(strategy_name),
+                                   VerifyOptions{r.verifier.spring_model});
     r.verify_seconds = seconds_since(start);
   }
   if (options.after_verify) options.after_verify();

@@ -26,6 +26,7 @@ VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<
       m.reason = "impedance form: no sensed force enters the command, so theta_v bounds the velocity error";
       return m;
     case ControllerForm::kPosition:
+      m.spring_model = SpringModel::kViaPoint;
       m.reason =
           "position form: no bound derived (its sensed-force term sits inside the turned, speed-capped "
           "drive); the task's theta_v is used, so the prediction need not cover this form";
@@ -71,6 +72,7 @@ nlohmann::json verifier_model_json(const VerifierModel& m) {
           {"theta_f", m.theta_f},
           {"extra_angle", m.extra_angle},
           {"theta_v", m.theta_v},
+          {"spring_model", spring_model_name(m.spring_model)},
           {"reason", m.reason}};
 }
 

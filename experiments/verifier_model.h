@@ -39,6 +39,7 @@
 
 #include "controllers/controller.h"
 #include "models/loaded_task.h"
+#include "verifier/spring_projection.h"
 
 namespace cmt {
 
@@ -54,7 +55,11 @@ struct VerifierModel {
   double theta_f = 0;       // uncertainty.theta_f of the task file
   double extra_angle = 0;   // beta (0 unless the form is admittance)
   double theta_v = 0;       // what the verifier used: task_theta_v + extra_angle
-  std::string reason;       // in words, for the JSON
+  // The spring trajectory model that covers the form: the velocity forms keep the sensing offset fixed during
+  // a motion (SpringModel::kVelocity, proved sound for them); the position form replans from a fresh sensed
+  // position at every breakaway, Buckley's via-point model (kViaPoint).
+  SpringModel spring_model = SpringModel::kVelocity;
+  std::string reason;  // in words, for the JSON
 };
 
 // `task_yaml` is the text `task` was loaded from. For the admittance form with theta_f > 0 the text is
@@ -64,7 +69,7 @@ struct VerifierModel {
 VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
                                   ControllerForm form);
 
-// {controller, task_theta_v, theta_f, extra_angle, theta_v, reason}.
+// {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, reason}.
 nlohmann::json verifier_model_json(const VerifierModel& model);
 
 }  // namespace cmt

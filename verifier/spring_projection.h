@@ -48,6 +48,15 @@ inline constexpr int kMaxSpringFixpointSteps = 20000;
 // larger of the two.
 double spring_rest_radius(const Uncertainty& u);
 
+// Velocity model (docs/verifier.md, "Velocity-form spring model"). delta(theta_v) = max(max_b e^(−b / tan
+// theta_v) sin b, e^(−pi / (2 tan theta_v))) = e^(−theta_v / tan theta_v) sin(theta_v): a free path from x
+// toward a fixed p* stays within delta |x − p*| of seg[x, p*].
+double spring_spiral_deviation(double theta_v);
+// A bound on |x − p| over every point x of a velocity-model motion from `start`: |x − p*| never grows in
+// flight, nor while sliding outside a face's or an edge's zone; inside a zone (reachable within the bound)
+// it is at most the distance from p* to the plane or line over cos(theta_v); + eps_s for p* − p.
+double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p, const Uncertainty& u);
+
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model = SpringModel::kViaPoint);
 

@@ -32,6 +32,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Relative slack on angles, radii and bounds computed in floating point (all rounded toward "more").
 constexpr double kSlack = 1e-9;
+// Grid of snap_outward, x scene scale.
+constexpr double kVelocitySnap = 1e-7;
 // Golden-section steps per support bound (the bracket [−1e3, 1e3] shrinks by 0.618 per step; any lambda is
 // sound, so this only sets how tight the bound is).
 constexpr int kGoldenSteps = 60;
@@ -59,6 +61,22 @@ std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, d
     if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) out.push_back(a + (b - a) * (sa / (sa - sb)));
   }
   return out;
+}
+
+// A convex chart polygon grown by kVelocitySnap x scale and its vertices rounded to the grid of that
+// spacing, then hulled: it contains the polygon (each vertex moves by at most spacing / sqrt 2 < the growth),
+// and nearly equal polygons (the same bound computed from slightly different pieces) become equal, so the
+// fixpoint does not chase rounding-level slivers.
+Points2 snap_outward(const Points2& poly, const FaceChart& chart, const Vec3& n, double scale) {
+  if (poly.size() < 3) return poly;
+  const double grid = kVelocitySnap * scale;
+  const Points2 grown = minkowski_outward(poly, disk_offsets(chart, n, grid));
+  Points2 snapped;
+  for (const Point2& q : grown) {
+    const double x = CGAL::to_double(q.x()), y = CGAL::to_double(q.y());
+    snapped.emplace_back(std::round(x / grid) * grid, std::round(y / grid) * grid);
+  }
+  return convex_hull(snapped);
 }
 
 // Outer polygon (chart coordinates, clipped to the face) of the section of the intersection of convex sets
@@ -126,7 +144,8 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   for (const auto& q : poly) pts.push_back(chart.project(Vec3(origin + q[0] * e1 + q[1] * e2)));
   // The chart image of the double polygon, rounded outward by the margin (which also covers the rounding of
   // the double clipping above), on the face.
-  return clip(minkowski_outward(pts, disk_offsets(chart, n, margin)), g.face_polygon[fi]);
+  return clip(snap_outward(minkowski_outward(pts, disk_offsets(chart, n, margin)), chart, n, scale),
+              g.face_polygon[fi]);
 }
 
 Support ball_support(const Vec3& center, double radius) {
@@ -187,6 +206,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
   }
   const double ball = std::min(rmax + 2 * eps, m.reach) * (1 + kSlack) + kSlack * scale;
   std::vector<Support> bounds = {ball_support(p, ball)};
+  std::vector<int> skip_faces;
   if (r_lower > eps * (1 + 1e-6) + kSlack * scale && mean.norm() > 1e-9 * static_cast<double>(piece.size())) {
     // Tube: conv(piece ∪ B(p, eps)) ⊕ ball(rho).
     const double rho = spring_spiral_deviation(m.u.theta_v) * (rmax + eps) * (1 + kSlack) + kSlack * scale;
@@ -203,6 +223,23 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
                          std::asin(std::min(1.0, eps / r_lower)) * (1 + kSlack) + 2 * kSlack;
     if (angle + kVelocityPointedMargin < kPi / 2) {
       const FlightCone cone = flight_cone(-a, angle, scale);
+      // A face whose plane holds the piece while every ray of the cone points strictly to one side of it
+      // meets the flight only in the piece itself, where the robot already is (edges and vertices seed
+      // their faces themselves, may_enter): not a landing.
+      for (std::size_t fi = 0; fi < g.cspace->faces().size(); ++fi) {
+        const Face& face = g.cspace->faces()[fi];
+        bool on_plane = true;
+        for (const Vec3& x : piece) on_plane = on_plane && std::abs(face.normal.dot(x) - face.offset) <= 1e-9 * scale;
+        if (!on_plane) continue;
+        int above = 0, below = 0;
+        for (const Vec3& r : cone.rays) {
+          const double s = face.normal.dot(r) / r.norm();
+          above += s > 1e-9 ? 1 : 0;
+          below += s < -1e-9 ? 1 : 0;
+        }
+        if (above == static_cast<int>(cone.rays.size()) || below == static_cast<int>(cone.rays.size()))
+          skip_faces.push_back(static_cast<int>(fi));
+      }
       bounds.push_back([piece, cone](const Vec3& w) {
         double best = -std::numeric_limits<double>::infinity(), ray = 0;
         for (const Vec3& x : piece) best = std::max(best, x.dot(w));
@@ -213,7 +250,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
   }
   const int nf = static_cast<int>(g.cspace->faces().size());
   for (int fi = 0; fi < nf; ++fi) {
-    if (fi == source_face) continue;
+    if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end()) continue;
     const Points2 section = support_section(g, fi, bounds);
     if (section.size() < 3 && !section.empty()) {
       // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving
@@ -290,58 +327,6 @@ void split_source(const std::vector<Vec3>& poly, const Vec3& center, double eps,
 }
 
 }  // namespace
-
-double spring_spiral_deviation(double theta_v) {
-  if (theta_v <= 0) return 0;
-  const double T = std::tan(theta_v);
-  return std::max(std::exp(-theta_v / T) * std::sin(theta_v), std::exp(-kPi / (2 * T)));
-}
-
-double velocity_reach_bound(const CSpace& c, const ReachedSet& start, const Vec3& p, const Uncertainty& u) {
-  const double eps = u.eps_s, T = std::tan(u.theta_v), cos_v = std::cos(u.theta_v);
-  double v = 0;  // >= |x − p*| for every point of the motion so far
-  for (const ReachedPiece& piece : start.pieces())
-    for (const Vec3& q : piece.polygon) v = std::max(v, (q - p).norm() + eps);
-  // A zone can raise the bound only on an atom the robot can reach at all, i.e. one with a point within v of
-  // p*; iterate until no zone raises it (each round takes in at least one more atom, or stops).
-  const std::size_t nf = c.faces().size(), ne = c.edges().size();
-  std::vector<char> used(nf + ne, 0);
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (std::size_t i = 0; i < nf; ++i) {
-      if (used[i]) continue;
-      const Face& f = c.faces()[i];
-      const double depth = f.offset - f.normal.dot(p);
-      const Vec3 center = p + depth * f.normal;
-      const double inplane = distance_in_plane(f.polygon, f.normal, center);
-      const double h = std::abs(depth) + eps;
-      if (std::hypot(depth, inplane) > v + eps) continue;  // not reachable within the bound
-      if (inplane > h * T + eps) continue;                 // the zone about p*' misses the face
-      used[i] = 1;
-      if (h / cos_v > v) {
-        v = h / cos_v;
-        grew = true;
-      }
-    }
-    for (std::size_t i = 0; i < ne; ++i) {
-      if (used[nf + i]) continue;
-      const Edge& e = c.edges()[i];
-      const Vec3 d = e.b - e.a;
-      const double len = d.norm();
-      const double t = (p - e.a).dot(d) / (len * len);
-      const double perp = (p - (e.a + t * d)).norm();
-      const double gap = std::max({0.0, -t * len, (t - 1) * len});  // from the projection to the segment
-      if (std::hypot(perp, gap) > v + eps) continue;
-      if (gap > (perp + eps) * T + eps) continue;
-      used[nf + i] = 1;
-      if ((perp + eps) / cos_v > v) {
-        v = (perp + eps) / cos_v;
-        grew = true;
-      }
-    }
-  }
-  return (v + eps) * (1 + kSlack) + kSlack * c.scale();
-}
 
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector<Point3>& src,
                                     int source_face, const VelocitySpring& m) {
@@ -525,3 +510,59 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
 }
 
 }  // namespace cmt::fp
+
+namespace cmt {
+
+double spring_spiral_deviation(double theta_v) {
+  if (theta_v <= 0) return 0;
+  const double T = std::tan(theta_v);
+  return std::max(std::exp(-theta_v / T) * std::sin(theta_v), std::exp(-fp::kPi / (2 * T)));
+}
+
+double velocity_reach_bound(const CSpace& c, const ReachedSet& start, const Vec3& p, const Uncertainty& u) {
+  const double eps = u.eps_s, T = std::tan(u.theta_v), cos_v = std::cos(u.theta_v);
+  double v = 0;  // >= |x − p*| for every point of the motion so far
+  for (const ReachedPiece& piece : start.pieces())
+    for (const Vec3& q : piece.polygon) v = std::max(v, (q - p).norm() + eps);
+  // A zone can raise the bound only on an atom the robot can reach at all, i.e. one with a point within v of
+  // p*; iterate until no zone raises it (each round takes in at least one more atom, or stops).
+  const std::size_t nf = c.faces().size(), ne = c.edges().size();
+  std::vector<char> used(nf + ne, 0);
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t i = 0; i < nf; ++i) {
+      if (used[i]) continue;
+      const Face& f = c.faces()[i];
+      const double depth = f.offset - f.normal.dot(p);
+      const Vec3 center = p + depth * f.normal;
+      const double inplane = fp::distance_in_plane(f.polygon, f.normal, center);
+      const double h = std::abs(depth) + eps;
+      if (std::hypot(depth, inplane) > v + eps) continue;  // not reachable within the bound
+      if (inplane > h * T + eps) continue;                 // the zone about p*' misses the face
+      used[i] = 1;
+      if (h / cos_v > v) {
+        v = h / cos_v;
+        grew = true;
+      }
+    }
+    for (std::size_t i = 0; i < ne; ++i) {
+      if (used[nf + i]) continue;
+      const Edge& e = c.edges()[i];
+      const Vec3 d = e.b - e.a;
+      const double len = d.norm();
+      const double t = (p - e.a).dot(d) / (len * len);
+      const double perp = (p - (e.a + t * d)).norm();
+      const double gap = std::max({0.0, -t * len, (t - 1) * len});  // from the projection to the segment
+      if (std::hypot(perp, gap) > v + eps) continue;
+      if (gap > (perp + eps) * T + eps) continue;
+      used[nf + i] = 1;
+      if ((perp + eps) / cos_v > v) {
+        v = (perp + eps) / cos_v;
+        grew = true;
+      }
+    }
+  }
+  return (v + eps) * (1 + fp::kSlack) + fp::kSlack * c.scale();
+}
+
+}  // namespace cmt

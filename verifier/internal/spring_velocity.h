@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "verifier/internal/flight.h"
+#include "verifier/spring_projection.h"
 
 namespace cmt::fp {
 
@@ -31,22 +32,12 @@ inline constexpr int kVelocityMaxPieces = 64;
 // polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
 inline constexpr int kVelocitySupportDirections = 32;
 
-// delta(theta_v) = max(max_b e^(−b / tan theta_v) sin b, e^(−pi / (2 tan theta_v))) = e^(−theta_v / tan
-// theta_v) sin(theta_v): a free path from x toward a fixed p* stays within delta |x − p*| of seg[x, p*].
-double spring_spiral_deviation(double theta_v);
-
 // What one velocity-form spring motion shares across its flights and slides.
 struct VelocitySpring {
   Vec3 p;            // commanded position
   Uncertainty u;     // theta_v (possibly widened, experiments/verifier_model.h) and eps_s are used
   double reach = 0;  // every point of the motion lies within this distance of p (velocity_reach_bound)
 };
-
-// The distance bound `reach` for a motion from `start` (doc: |x − p*| never grows in flight, nor while
-// sliding outside a face's or an edge's zone, and inside a zone it is at most (dist(p*, plane or line)) /
-// cos(theta_v)).
-double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p,
-                            const Uncertainty& u);
 
 // The part of face fi within m.reach of p (outer polygon; empty if none): what widening may take.
 Points2 velocity_reach_section(const ReachedSet::Impl& geometry, int fi, const VelocitySpring& m);
