@@ -78,6 +78,25 @@ void BM_VerifyHoleTeach(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach")));
 }
+// The same strategy under the velocity-form spring model (docs/verifier.md), and the cube's sticking motion
+// under both models.
+void BM_VerifyHoleTeachVelocity(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach"),
+                                                  {cmt::SpringModel::kVelocity}));
+}
+const cmt::LoadedTask& cube() {
+  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
+  return *task;
+}
+void BM_BuildCSpaceCube(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(cube().task));
+}
+void BM_VerifyCubeStick(benchmark::State& state) {
+  const auto model = state.range(0) == 0 ? cmt::SpringModel::kViaPoint : cmt::SpringModel::kVelocity;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::verify_strategy(cube(), *cube().task.find_strategy("stick"), {model}));
+}
 void BM_VerifyTwoBlocksProbe(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(cmt::verify_strategy(two_blocks(), *two_blocks().task.find_strategy("probe")));
@@ -92,5 +111,8 @@ BENCHMARK(BM_BuildCSpaceGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillise
 BENCHMARK(BM_ProjectGrid)->Arg(1)->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_BuildCSpaceHole)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VerifyHoleTeach)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_VerifyHoleTeachVelocity)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BuildCSpaceCube)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VerifyCubeStick)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_VerifyTwoBlocksProbe)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_MAIN();
