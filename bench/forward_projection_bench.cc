@@ -82,8 +82,8 @@ void BM_VerifyHoleTeach(benchmark::State& state) {
 // under both models.
 void BM_VerifyHoleTeachVelocity(benchmark::State& state) {
   for (auto _ : state)
-    benchmark::DoNotOptimize(cmt::verify_strategy(hole(), *hole().task.find_strategy("teach"),
-                                                  {cmt::SpringModel::kVelocity}));
+    benchmark::DoNotOptimize(
+        cmt::verify_strategy(hole(), *hole().task.find_strategy("teach"), {cmt::SpringModel::kVelocity}));
 }
 const cmt::LoadedTask& cube() {
   static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");

@@ -162,7 +162,19 @@ class SpringProjector {
       for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
     if (fresh > 0 && ++edge_growths_[ei] == kSpringWideningRounds) {  // widening: the whole edge
       ++widened_;
-      add_interval(ei, 0, 1);
+      if (model_ != SpringModel::kVelocity) {
+        add_interval(ei, 0, 1);
+      } else {  // the part within the reach ball: |a + t d − p| <= reach, rounded outward
+        const Edge& e = c_.edges()[ei];
+        const Vec3 d = e.b - e.a, w = e.a - p_;
+        const double A = d.squaredNorm(), B = 2 * d.dot(w), C = w.squaredNorm() - vm_.reach * vm_.reach;
+        const double disc = B * B - 4 * A * C;
+        if (disc >= 0) {
+          const double root = std::sqrt(disc);
+          add_interval(ei, std::max(0.0, (-B - root) / (2 * A) - 1e-9),
+                       std::min(1.0, (-B + root) / (2 * A) + 1e-9));
+        }
+      }
     }
   }
   void add_vertex(int vi) {

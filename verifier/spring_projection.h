@@ -55,7 +55,8 @@ double spring_spiral_deviation(double theta_v);
 // A bound on |x − p| over every point x of a velocity-model motion from `start`: |x − p*| never grows in
 // flight, nor while sliding outside a face's or an edge's zone; inside a zone (reachable within the bound)
 // it is at most the distance from p* to the plane or line over cos(theta_v); + eps_s for p* − p.
-double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p, const Uncertainty& u);
+double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p,
+                            const Uncertainty& u);
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model = SpringModel::kViaPoint);

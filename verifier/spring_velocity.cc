@@ -229,7 +229,8 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
       for (std::size_t fi = 0; fi < g.cspace->faces().size(); ++fi) {
         const Face& face = g.cspace->faces()[fi];
         bool on_plane = true;
-        for (const Vec3& x : piece) on_plane = on_plane && std::abs(face.normal.dot(x) - face.offset) <= 1e-9 * scale;
+        for (const Vec3& x : piece)
+          on_plane = on_plane && std::abs(face.normal.dot(x) - face.offset) <= 1e-9 * scale;
         if (!on_plane) continue;
         int above = 0, below = 0;
         for (const Vec3& r : cone.rays) {
@@ -250,7 +251,8 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
   }
   const int nf = static_cast<int>(g.cspace->faces().size());
   for (int fi = 0; fi < nf; ++fi) {
-    if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end()) continue;
+    if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end())
+      continue;
     const Points2 section = support_section(g, fi, bounds);
     if (section.size() < 3 && !section.empty()) {
       // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving

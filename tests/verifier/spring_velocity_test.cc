@@ -18,8 +18,8 @@ namespace {
 
 using test::face_at;
 
-// delta(.25) = e^(−.25 / tan .25) sin .25: tan .25 = .2553419, .25 / .2553419 = .9790802, e^−.9790802 = .3756611,
-// sin .25 = .2474040, product .0929390. theta_v = 0: straight paths, no deviation.
+// delta(.25) = e^(−.25 / tan .25) sin .25: tan .25 = .2553419, .25 / .2553419 = .9790802, e^−.9790802 =
+// .3756611, sin .25 = .2474040, product .0929390. theta_v = 0: straight paths, no deviation.
 TEST(SpringVelocity, SpiralDeviationHandValues) {
   EXPECT_NEAR(spring_spiral_deviation(0.25), 0.092939, 1e-6);
   EXPECT_EQ(spring_spiral_deviation(0), 0);
@@ -52,7 +52,8 @@ TEST(SpringVelocity, ExtremeSpiralAttainsTheDeviationBound) {
 std::string floor_scene(const std::string& start, const std::string& p) {
   return "name: t\nunits: in\nfriction: 0.5\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
          "0.1, step: 0.1}\ncspace: []\nbounds: {min: [-5, -5, 0], max: [5, 5, 5]}\nstart: {point: " +
-         start + "}\ngoal: {point: " + start + "}\nmotions:\n  m: {spring: " + p + "}\nstrategies:\n  s: [m]\n";
+         start + "}\ngoal: {point: " + start + "}\nmotions:\n  m: {spring: " + p +
+         "}\nstrategies:\n  s: [m]\n";
 }
 
 // Start (3,0,0) on the floor of the box [-5,5]^2 x [0,5], p = (0,0,-5), eps_s = .1, theta_v = .1:
@@ -63,7 +64,8 @@ std::string floor_scene(const std::string& start, const std::string& p) {
 TEST(SpringVelocity, ReachBoundHandValue) {
   auto task = load_task_from_string(floor_scene("[3, 0, 0]", "[0, 0, -5]"), "test");
   const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
-  EXPECT_NEAR(velocity_reach_bound(task->cspace, start, Vec3(0, 0, -5), task->task.uncertainty), 6.03095, 1e-5);
+  EXPECT_NEAR(velocity_reach_bound(task->cspace, start, Vec3(0, 0, -5), task->task.uncertainty), 6.03095,
+              1e-5);
 }
 
 // The model's dynamics, integrated directly: p* = p − b (|b| <= eps_s) fixed, the velocity direction within
@@ -92,7 +94,9 @@ Path simulate(const Vec3& start, const Vec3& p, double eps, double theta, double
   Path out;
   Vec3 x = start;
   const double h = 1e-3;
-  auto on_top = [&](const Vec3& q) { return block && std::abs(q.z() - 1) < 1e-12 && std::abs(q.x()) <= 1 && std::abs(q.y()) <= 1; };
+  auto on_top = [&](const Vec3& q) {
+    return block && std::abs(q.z() - 1) < 1e-12 && std::abs(q.x()) <= 1 && std::abs(q.y()) <= 1;
+  };
   auto on_floor = [&](const Vec3& q) { return std::abs(q.z()) < 1e-12; };
   for (int i = 0; i < 200'000; ++i) {
     if (frac(rng) < 0.002) {  // the error may switch (§3.2.1)
