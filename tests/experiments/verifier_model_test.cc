@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "models/task_error.h"
 #include "tests/experiments/cmt_runner.h"
@@ -72,6 +73,22 @@ TEST(VerifierModel, ImpedanceAndExactForceKeepTheTasksThetaV) {
   const VerifierModel m =
       make_verifier_model(exact, load_task_from_string(exact, "room.yaml"), ControllerForm::kAdmittance);
   EXPECT_EQ(m.theta_v, 0.1);
+}
+
+TEST(VerifierModel, TheFormPicksTheSpringModel) {
+  // The velocity forms drive toward p − b with the sensing offset b fixed during a motion: the velocity
+  // model; the position form replans its via points from fresh sensed positions: Buckley's via-point model
+  // (docs/verifier.md, "Velocity-form spring model").
+  const std::string yaml = room_yaml(0.1, 0.1);
+  const auto task = load_task_from_string(yaml, "room.yaml");
+  const std::pair<ControllerForm, const char*> cases[] = {{ControllerForm::kImpedance, "velocity"},
+                                                          {ControllerForm::kAdmittance, "velocity"},
+                                                          {ControllerForm::kPosition, "via-point"}};
+  for (const auto& [form, name] : cases) {
+    const VerifierModel m = make_verifier_model(yaml, task, form);
+    EXPECT_EQ(spring_model_name(m.spring_model), std::string(name));
+    EXPECT_EQ(verifier_model_json(m)["spring_model"], name);
+  }
 }
 
 TEST(VerifierModel, AWidenedAngleBeyondTheFormatIsBadInputNamingTheKey) {
