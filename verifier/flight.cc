@@ -83,8 +83,7 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
       front = front || side == CGAL::ON_POSITIVE_SIDE;
       all_on = all_on && side == CGAL::ON_ORIENTED_BOUNDARY;
     }
-    if (source.straight_paths && !front && !all_on)
-      continue;  // behind g: reaching g would cross the obstacle behind it
+    if (!front && !all_on) continue;  // behind g: reaching g would cross the obstacle behind it
     std::vector<FT> s(gens.size());
     for (std::size_t i = 0; i < gens.size(); ++i) s[i] = value(chart.plane, gens[i]);
     Points2 pts;
@@ -107,10 +106,6 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
       continue;
     }
     hit.region = PolygonSet2(to_polygon(section));
-    if (!source.straight_paths) {
-      hits.push_back(std::move(hit));
-      continue;
-    }
     // Occluders: faces meeting the hull of the source and g (where every segment from X to g lies).
     Box corridor = src_box;
     for (const Vec3& p : c.faces()[gi].polygon) corridor.add(p);

@@ -50,13 +50,13 @@ std::vector<Vec3> overshoot_points(const std::vector<Vec3>& from, const Vec3& p,
   return out;
 }
 
+}  // namespace
+
 void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   *u = n.cross(helper).normalized();
   *w = n.cross(*u);
 }
-
-}  // namespace
 
 // Chart offsets of a polygon circumscribing the disk of radius r in the plane with normal n.
 std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r) {

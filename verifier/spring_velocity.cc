@@ -24,6 +24,7 @@
 #include <numbers>
 #include <utility>
 
+#include "models/polygon_distance.h"
 #include "verifier/internal/spring_flight.h"
 
 namespace cmt::fp {
@@ -40,12 +41,6 @@ constexpr int kGoldenSteps = 60;
 
 // The support function w -> max { y . w : y in the set } of a convex set (w need not be a unit vector).
 using Support = std::function<double(const Vec3&)>;
-
-void frame(const Vec3& n, Vec3* e1, Vec3* e2) {
-  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  *e1 = n.cross(helper).normalized();
-  *e2 = n.cross(*e1);
-}
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 
@@ -93,7 +88,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   for (const Support& h : sets)
     if (h(n) < c - margin || -h(-n) > c + margin) return {};  // a set lies on one side of the plane
   Vec3 e1, e2;
-  frame(n, &e1, &e2);
+  face_frame(n, &e1, &e2);
   const Vec3 origin = c * n;
   const double big = 8 * scale + 1;
   std::vector<std::array<double, 2>> poly = {{-big, -big}, {big, -big}, {big, big}, {-big, big}};
@@ -171,23 +166,14 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> cut(const std::vector<Vec3>& pie
   return {piece, {}};
 }
 
-// In-plane distance from q to the convex polygon `poly` (3-D points in a plane with normal n): 0 inside.
+// Distance from q (in the plane) to the convex planar polygon `poly` with plane normal n, whatever the
+// polygon's orientation about n: 0 inside.
 double distance_in_plane(const std::vector<Vec3>& poly, const Vec3& n, const Vec3& q) {
-  double best = std::numeric_limits<double>::infinity();
-  bool inside = poly.size() >= 3;
-  double orientation = 0;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Vec3& a = poly[i];
-    const Vec3& b = poly[(i + 1) % poly.size()];
-    const Vec3 ab = b - a;
-    const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    const Vec3 d = q - (a + t * ab);
-    best = std::min(best, (d - n.dot(d) * n).norm());
-    const double side = n.dot(ab.cross(q - a));
-    if (orientation == 0) orientation = side;
-    if (side * orientation < 0) inside = false;
-  }
-  return inside ? 0.0 : best;
+  if (poly.size() < 3) return distance_to_convex_polygon(q, poly, n);
+  Vec3 area = Vec3::Zero();  // Newell: robust to collinear vertices
+  for (std::size_t i = 0; i < poly.size(); ++i) area += poly[i].cross(poly[(i + 1) % poly.size()]);
+  const double turn = n.dot(area);
+  return distance_to_convex_polygon(q, poly, turn < 0 ? Vec3(-n) : n);
 }
 
 // One piece's reach (see the file comment) into `regions` / `lowers`.

@@ -24,9 +24,6 @@ struct FlightSource {
   std::vector<Point3> vertices;    // conv(vertices) is the source
   std::vector<Plane3> keep_front;  // only points on the non-negative side of each plane are reachable
   int face = -1;                   // source face index (not a target), or -1
-  // false: the paths inside conv(X) + cone may bend (the velocity-form spring, spring_velocity.cc), so no
-  // target is skipped for lying behind X and no umbra is subtracted.
-  bool straight_paths = true;
 };
 
 struct FlightHit {

@@ -44,6 +44,9 @@ Points2 spring_strip(const ReachedSet::Impl& geometry, int face_index, const Poi
 Points2 chart_disk(const ReachedSet::Impl& geometry, int face_index, const Vec3& center, double r,
                    bool outer);
 
+// A right-handed orthonormal frame (u, w) of the plane with unit normal n.
+void face_frame(const Vec3& n, Vec3* u, Vec3* w);
+
 // Chart offsets of the kSpringDiskSides-gon circumscribing the disk of radius r in the plane with normal n.
 std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r);
 
