@@ -78,7 +78,7 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
   } else {
     // The widened task has the same strategies and C-space; only its uncertainty differs.
     r.prediction = verify_strategy(*r.verifier.task, *r.verifier.task->task.find_strategy(strategy_name),
-                                   VerifyOptions{r.verifier.spring_model});
+                                   r.verifier.verify_options());
     r.verify_seconds = seconds_since(start);
   }
   if (options.after_verify) options.after_verify();

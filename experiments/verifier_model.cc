@@ -73,6 +73,7 @@ nlohmann::json verifier_model_json(const VerifierModel& m) {
           {"extra_angle", m.extra_angle},
           {"theta_v", m.theta_v},
           {"spring_model", spring_model_name(m.spring_model)},
+          {"stop_relative_speed", m.stop_relative_speed},
           {"reason", m.reason}};
 }
 

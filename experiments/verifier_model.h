@@ -38,8 +38,10 @@
 #include <string>
 
 #include "controllers/controller.h"
+#include "controllers/termination.h"
 #include "models/loaded_task.h"
 #include "verifier/spring_projection.h"
+#include "verifier/verify.h"
 
 namespace cmt {
 
@@ -59,7 +61,12 @@ struct VerifierModel {
   // a motion (SpringModel::kVelocity, proved sound for them); the position form replans from a fresh sensed
   // position at every breakaway, Buckley's via-point model (kViaPoint).
   SpringModel spring_model = SpringModel::kVelocity;
+  // The rollouts' sticking rule also fires on slides slower than this fraction of the reference speed
+  // (controllers/termination.h); the verifier's termination sets take such slow slides in (VerifyOptions).
+  double stop_relative_speed = kStopRelativeSpeed;
   std::string reason;  // in words, for the JSON
+
+  VerifyOptions verify_options() const { return {spring_model, stop_relative_speed}; }
 };
 
 // `task_yaml` is the text `task` was loaded from. For the admittance form with theta_f > 0 the text is
@@ -69,7 +76,7 @@ struct VerifierModel {
 VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
                                   ControllerForm form);
 
-// {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, reason}.
+// {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, reason}.
 nlohmann::json verifier_model_json(const VerifierModel& model);
 
 }  // namespace cmt

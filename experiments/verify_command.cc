@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 
+#include "controllers/termination.h"
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
 #include "models/task_error.h"
@@ -82,7 +83,8 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                         {"reliable", r.reliable},
                         {"steps", steps},
                         {"seconds", seconds},
-                        {"spring_model", spring_model_name(r.spring_model)}};
+                        {"spring_model", spring_model_name(r.spring_model)},
+                        {"stop_relative_speed", r.stop_relative_speed}};
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;
@@ -98,6 +100,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     std::string task, strategy, motion;
     bool reached = false;
     SpringModel spring_model = SpringModel::kVelocity;
+    double stop_relative_speed = kStopRelativeSpeed;
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -115,6 +118,11 @@ void add_verify_command(CLI::App& app, CommandState& state) {
           CLI::CheckedTransformer(std::map<std::string, SpringModel>{{"velocity", SpringModel::kVelocity},
                                                                      {"via-point", SpringModel::kViaPoint}},
                                   CLI::ignore_case));
+  cmd->add_option("--stop-relative-speed", options->stop_relative_speed,
+                  "kappa of the stop rule: a slide slower than kappa x the motion's reference speed counts as "
+                  "a stop, as in the rollouts (default " + std::to_string(kStopRelativeSpeed) +
+                      "); 0 = Coulomb sticking only (the thesis)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
@@ -132,7 +140,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     }
     VerifyResult result;
     try {
-      result = verify_strategy(*task, strategy, VerifyOptions{options->spring_model});
+      result = verify_strategy(*task, strategy, VerifyOptions{options->spring_model, options->stop_relative_speed});
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;

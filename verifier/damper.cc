@@ -21,16 +21,17 @@ double angle_between(const Vec3& a, const Vec3& b) {
 constexpr double kUniqueStickSlack = 1e-9;
 
 StickClass classify_damper(const FrictionCone& cone, const UniqueStick& unique, const Vec3& v,
-                           double theta_v) {
-  // v_a ∈ −FC  ⟺  −v_a ∈ FC: test the cone(−v, theta_v) against the friction cone for "never".
-  const CircularCone velocities{-v.normalized(), theta_v};
+                           double theta_v, double stop_angle) {
+  // v_a ∈ −FC  ⟺  −v_a ∈ FC: test the cone(−v, theta_v + stop_angle) against the friction cone for "never".
+  const CircularCone velocities{-v.normalized(), std::min(theta_v + stop_angle, kPi / 2)};
   if (!cone.may_intersect_cone(velocities)) return StickClass::kNever;
   if (unique.margin(v) >= theta_v + kUniqueStickSlack) return StickClass::kMust;
   return StickClass::kMay;
 }
 
-StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v) {
-  return classify_damper(cones[atom_id], cones.unique(atom_id), v, theta_v);
+StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v,
+                           double stop_angle) {
+  return classify_damper(cones[atom_id], cones.unique(atom_id), v, theta_v, stop_angle);
 }
 
 StickClass classify_damper(const CSpace& cspace, int atom_id, const Vec3& v, double theta_v) {

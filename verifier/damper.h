@@ -14,9 +14,13 @@ namespace cmt {
 // negative friction cone of the atom (Fig 3.5). never: cone(v, theta_v) ∩ −FC = {0} (outer cone); must: every
 // v_a in the cone lies where sticking is the only Coulomb solution (UniqueStick, margin >= theta_v); may
 // otherwise. Errors only go toward may.
+// `stop_angle` (>= 0) widens the "never" test only: a robot whose velocity is within theta_v + stop_angle of
+// the friction cone may slide so slowly that a termination rule counting slow slides as stops fires
+// (docs/verifier.md "Slow slides count as stops"); "must" keeps theta_v.
 StickClass classify_damper(const FrictionCone& atom_cone, const UniqueStick& unique, const Vec3& v,
-                           double theta_v);
-StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v);
+                           double theta_v, double stop_angle = 0);
+StickClass classify_damper(const AtomCones& cones, int atom_id, const Vec3& v, double theta_v,
+                           double stop_angle = 0);
 StickClass classify_damper(const CSpace& cspace, int atom_id, const Vec3& v, double theta_v);
 
 // Directions in which the robot may slide on a face (Alg 4.3), as an interval of azimuths about the face

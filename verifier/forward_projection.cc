@@ -64,7 +64,8 @@ Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
 
 class Projector {
  public:
-  Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v)
+  Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
+            double stop_relative_speed)
       : c_(lt.cspace),
         v_(v.normalized()),
         theta_v_(lt.task.uncertainty.theta_v),
@@ -73,7 +74,14 @@ class Projector {
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
-    for (int id = 0; id < c_.atom_count(); ++id) cls_.push_back(classify_damper(cones, id, v_, theta_v_));
+    // The commanded speed is the reference speed (only the direction has an error), so a slide slower than
+    // kappa times it has its velocity within asin(kappa) of the friction cone.
+    const double stop_angle = std::asin(std::min(1.0, std::max(0.0, stop_relative_speed)));
+    for (int id = 0; id < c_.atom_count(); ++id) {
+      cls_.push_back(classify_damper(cones, id, v_, theta_v_));
+      stops_.push_back(stop_angle > 0 ? classify_damper(cones, id, v_, theta_v_, stop_angle) != StickClass::kNever
+                                      : cls_.back() != StickClass::kNever);
+    }
     for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
     cone_ = flight_cone(v_, theta_v_, c_.scale());
     pend_region_.resize(nf_);
@@ -105,9 +113,7 @@ class Projector {
       out.fallback = true;
       for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
     }
-    std::vector<bool> keep(c_.atom_count());
-    for (int id = 0; id < c_.atom_count(); ++id) keep[id] = cls_[id] != StickClass::kNever;
-    out.termination = reached_.restricted(keep);
+    out.termination = reached_.restricted(stops_);
     out.may_not_terminate = out.termination.empty();
     out.reached = std::move(reached_);
     out.steps = steps_;
@@ -277,6 +283,7 @@ class Projector {
   ReachedSet::Impl& r_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
   std::vector<StickClass> cls_;
+  std::vector<bool> stops_;  // the atom may stop the motion: it may stick or slide slower than the stop rule
   std::vector<Sweep> sweeps_;
   FlightCone cone_;
   std::vector<PolygonSet2> pend_region_;
@@ -289,8 +296,8 @@ class Projector {
 }  // namespace
 
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
-                                        const ReachedSet& start, const Vec3& v) {
-  return Projector(task, cones, start, v).run();
+                                        const ReachedSet& start, const Vec3& v, double stop_relative_speed) {
+  return Projector(task, cones, start, v, stop_relative_speed).run();
 }
 
 }  // namespace cmt

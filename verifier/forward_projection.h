@@ -23,7 +23,14 @@ struct DamperProjection {
 // Work items (a face's new region, an edge's new intervals, a vertex) processed before the fallback.
 inline constexpr int kMaxFixpointSteps = 200000;
 
+// `stop_relative_speed` (kappa, >= 0): termination also holds the atoms where the robot may slide slower than
+// kappa times its commanded speed (a stop rule that counts slow slides as sticking, like the rollouts'
+// controllers/termination.h). The sliding speed is at least |v_a| sin(angle(−v_a, FC)) (the reaction lies in
+// the friction cone, so v_a minus the velocity is in it), hence such atoms are those with a velocity within
+// theta_v + asin(kappa) of the friction cone (docs/verifier.md "Slow slides count as stops"). 0: Coulomb
+// sticking only.
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
-                                        const ReachedSet& start, const Vec3& v);
+                                        const ReachedSet& start, const Vec3& v,
+                                        double stop_relative_speed = 0);
 
 }  // namespace cmt

@@ -26,7 +26,8 @@ using namespace fp;
 
 class SpringProjector {
  public:
-  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model)
+  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model,
+                  double stop_relative_speed)
       : c_(lt.cspace),
         u_(lt.task.uncertainty),
         p_(p),
@@ -36,7 +37,13 @@ class SpringProjector {
         tan_v_(std::tan(u_.theta_v)),
         reached_(c_),
         r_(reached_.impl()) {
-    if (model_ == SpringModel::kVelocity) vm_ = {p_, u_, velocity_reach_bound(c_, start, p_, u_)};
+    if (model_ == SpringModel::kVelocity) {
+      vm_ = {p_, u_, velocity_reach_bound(c_, start, p_, u_)};
+      slow_radius_ = slow_stop_radius(start, p_, u_, stop_relative_speed);
+    }
+    // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep eps_s).
+    Uncertainty u_weak = u_;
+    u_weak.eps_s += slow_radius_;
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
@@ -53,6 +60,7 @@ class SpringProjector {
     for (int fi = 0; fi < nf_; ++fi) {
       const Face& f = c_.faces()[fi];
       const FaceStickingRadii rad = face_sticking_radii(f, p_, u_);
+      const double weak_radius = slow_radius_ > 0 ? face_sticking_radii(f, p_, u_weak).weak : rad.weak;
       centers_.push_back(rad.center);
       depth_.push_back(f.offset - f.normal.dot(p_));
       PolygonSet2 strong;
@@ -68,16 +76,17 @@ class SpringProjector {
       no_slide_.push_back(inner_disk_set(fi, rad.center, no_slide_radius(fi)));
       no_leave_.push_back(inner_disk_set(fi, rad.center, no_leave_radius(fi)));
       Points2 w;
-      if (std::isinf(rad.weak))
+      if (std::isinf(weak_radius))
         w = r_.face_polygon[fi];
-      else if (rad.weak >= 0)
-        w = clip(chart_disk(r_, fi, rad.center, rad.weak, true), r_.face_polygon[fi]);
+      else if (weak_radius >= 0)
+        w = clip(chart_disk(r_, fi, rad.center, weak_radius, true), r_.face_polygon[fi]);
       weak_.push_back(w);
       strong_.push_back(std::move(strong));
     }
     for (int id = nf_; id < c_.atom_count(); ++id) {
       const SpringStickingRegions reg = spring_sticking_regions(c_, id, u_);
-      weak_atom_.push_back(reg.weak.contains(p_));
+      weak_atom_.push_back(slow_radius_ > 0 ? spring_sticking_regions(c_, id, u_weak).weak.contains(p_)
+                                            : reg.weak.contains(p_));
       strong_atom_.push_back(reg.strong.contains(p_));
     }
     // The start: entries on faces, new intervals and vertices.
@@ -110,7 +119,7 @@ class SpringProjector {
       for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
     }
     out.termination = termination();
-    out.free_radius = spring_rest_radius(u_);
+    out.free_radius = std::max(spring_rest_radius(u_), u_.eps_s + slow_radius_);
     out.free_center = p_;
     out.free_termination = flew_ && rest_ball_meets_free(out.free_radius);
     out.may_not_terminate = out.termination.empty() && !out.free_termination;
@@ -533,6 +542,7 @@ class SpringProjector {
   std::vector<PolygonSet2> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
   std::vector<Points2> weak_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
+  double slow_radius_ = 0;                      // slow_stop_radius (velocity model)
   std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;
   std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
@@ -547,13 +557,21 @@ class SpringProjector {
 
 double spring_rest_radius(const Uncertainty& u) { return std::max(u.eps_p, u.eps_s); }
 
+double slow_stop_radius(const ReachedSet& start, const Vec3& p, const Uncertainty& u, double kappa) {
+  if (kappa <= 0) return 0;
+  double far = 0;  // max over the start of |p − x0| (a polygon's farthest point is a vertex)
+  for (const ReachedPiece& piece : start.pieces())
+    for (const Vec3& q : piece.polygon) far = std::max(far, (q - p).norm());
+  return kappa * (far + u.eps_s);
+}
+
 const char* spring_model_name(SpringModel m) {
   return m == SpringModel::kVelocity ? "velocity" : "via-point";
 }
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
-                                        SpringModel model) {
-  return SpringProjector(task, start, p, model).run();
+                                        SpringModel model, double stop_relative_speed) {
+  return SpringProjector(task, start, p, model, stop_relative_speed).run();
 }
 
 }  // namespace cmt

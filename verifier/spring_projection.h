@@ -48,6 +48,14 @@ inline constexpr int kMaxSpringFixpointSteps = 20000;
 // larger of the two.
 double spring_rest_radius(const Uncertainty& u);
 
+// Velocity model with a stop rule that counts slides slower than kappa times the motion's reference speed
+// as stops (the rollouts' rule, controllers/termination.h; the reference speed is min(max speed, rate
+// |p − x̂0|) at the sensed start x̂0): such a slow point x is where the robot may stick with p* − x moved by
+// less than kappa V_ref / rate <= kappa (|p − x0| + eps_s). That radius, maximized over the start, is added
+// to eps_s in the weak sticking regions and the free-space rest ball (docs/verifier.md "Slow slides count
+// as stops"). 0 when kappa is 0.
+double slow_stop_radius(const ReachedSet& start, const Vec3& p, const Uncertainty& u, double kappa);
+
 // Velocity model (docs/verifier.md, "Velocity-form spring model"). delta(theta_v) = max(max_b e^(−b / tan
 // theta_v) sin b, e^(−pi / (2 tan theta_v))) = e^(−theta_v / tan theta_v) sin(theta_v): a free path from x
 // toward a fixed p* stays within delta |x − p*| of seg[x, p*].
@@ -58,7 +66,10 @@ double spring_spiral_deviation(double theta_v);
 double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p,
                             const Uncertainty& u);
 
+// `stop_relative_speed` (kappa): see slow_stop_radius; used by the velocity model only (the via-point model
+// bounds the position form, whose stop rule is the AML force rule while via points are issued).
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
-                                        SpringModel model = SpringModel::kViaPoint);
+                                        SpringModel model = SpringModel::kViaPoint,
+                                        double stop_relative_speed = 0);
 
 }  // namespace cmt

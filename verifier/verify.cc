@@ -15,7 +15,8 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
                     const ReachedSet& start, const VerifyOptions& options) {
   VerifyStep step{motion.name, ReachedSet(lt.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
-    SpringProjection p = forward_project_spring(lt, start, motion.target, options.spring_model);
+    SpringProjection p = forward_project_spring(lt, start, motion.target, options.spring_model,
+                                                options.stop_relative_speed);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;
@@ -27,7 +28,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.free_radius = p.free_radius;
     step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
   } else {
-    DamperProjection p = forward_project_damper(lt, cones, start, motion.target);
+    DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;
@@ -56,6 +57,7 @@ class StrategyVerifier {
         goal_(ReachedSet::from_regions(lt, lt.task.goal)) {
     out_.node_step.assign(strategy.nodes.size(), -1);
     out_.spring_model = options.spring_model;
+    out_.stop_relative_speed = options.stop_relative_speed;
   }
 
   VerifyResult run() {

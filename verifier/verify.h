@@ -68,6 +68,7 @@ struct VerifyStep {
 struct VerifyResult {
   bool reliable = false;
   SpringModel spring_model = SpringModel::kViaPoint;  // the model the spring motions were simulated with
+  double stop_relative_speed = 0;                     // VerifyOptions::stop_relative_speed used
   std::vector<VerifyStep> steps;
   int failed_step = -1;  // index into steps, or -1
   std::string failure;   // why, when unreliable
@@ -92,6 +93,12 @@ inline constexpr double kGoalRelativeTolerance = 1e-6;
 // kViaPoint (Buckley's App. B) for the position form.
 struct VerifyOptions {
   SpringModel spring_model = SpringModel::kViaPoint;
+  // kappa of a stop rule that also ends a motion where the robot slides slower than kappa times the motion's
+  // reference speed (the rollouts' rule: controllers/termination.h kStopRelativeSpeed, passed in by
+  // experiments/verifier_model.h since the verifier does not depend on controllers/). Widens the termination
+  // sets of dampers and of velocity-model springs (docs/verifier.md "Slow slides count as stops"). 0:
+  // termination by Coulomb sticking only, as in the thesis.
+  double stop_relative_speed = 0;
 };
 
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.

@@ -201,6 +201,20 @@ TEST(CmtVerify, SpringModelOption) {
   EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --spring-model tube --json").status, 2);
 }
 
+// The stop rule's kappa (docs/verifier.md "Slow slides count as stops"): by default the rollouts' 1 %
+// (controllers/termination.h), echoed in the JSON; 0 is Coulomb sticking only; outside [0, 1] a usage
+// error (exit 2).
+TEST(CmtVerify, StopRelativeSpeedOption) {
+  const Result d = run("verify " + task("cube") + " --strategy stick --json");
+  ASSERT_EQ(d.status, 0);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(d.out)["stop_relative_speed"].get<double>(), 0.01);
+  const Result z = run("verify " + task("cube") + " --strategy stick --stop-relative-speed 0 --json");
+  ASSERT_EQ(z.status, 0);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(z.out)["stop_relative_speed"].get<double>(), 0);
+  EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --stop-relative-speed 2 --json").status, 2);
+  EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --stop-relative-speed -1 --json").status, 2);
+}
+
 // Sensing termination (docs/task-format.md "terminate", docs/verifier.md §4.5): the room of
 // tests/verifier/sensing_tasks.h. P_s = [0, 1] x [-.5, .5] x [-.5, .5] grown by eps_s = .1 meets the reached
 // floor in the rectangle [-.1, 1.1] x [-.6, .6] (area 1.44), which `verify` lists as the step's

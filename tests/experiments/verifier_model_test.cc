@@ -88,6 +88,11 @@ TEST(VerifierModel, TheFormPicksTheSpringModel) {
     const VerifierModel m = make_verifier_model(yaml, task, form);
     EXPECT_EQ(spring_model_name(m.spring_model), std::string(name));
     EXPECT_EQ(verifier_model_json(m)["spring_model"], name);
+    // Every form's rollouts stop by the same 1 % rule, which the verifier must take in (its options carry
+    // it; docs/verifier.md "Slow slides count as stops").
+    EXPECT_EQ(m.verify_options().stop_relative_speed, 0.01);
+    EXPECT_EQ(m.verify_options().spring_model, m.spring_model);
+    EXPECT_EQ(verifier_model_json(m)["stop_relative_speed"], 0.01);
   }
 }
 
