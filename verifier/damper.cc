@@ -20,8 +20,8 @@ double angle_between(const Vec3& a, const Vec3& b) {
 // Slack on the unique-stick margin: directions this close to the boundary are "may".
 constexpr double kUniqueStickSlack = 1e-9;
 
-StickClass classify_damper(const FrictionCone& cone, const UniqueStick& unique, const Vec3& v,
-                           double theta_v, double stop_angle) {
+StickClass classify_damper(const FrictionCone& cone, const UniqueStick& unique, const Vec3& v, double theta_v,
+                           double stop_angle) {
   // v_a ∈ −FC  ⟺  −v_a ∈ FC: test the cone(−v, theta_v + stop_angle) against the friction cone for "never".
   const CircularCone velocities{-v.normalized(), std::min(theta_v + stop_angle, kPi / 2)};
   if (!cone.may_intersect_cone(velocities)) return StickClass::kNever;

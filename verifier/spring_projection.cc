@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "verifier/internal/fixpoint.h"
@@ -41,7 +42,8 @@ class SpringProjector {
       vm_ = {p_, u_, velocity_reach_bound(c_, start, p_, u_)};
       slow_radius_ = slow_stop_radius(start, p_, u_, stop_relative_speed);
     }
-    // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep eps_s).
+    // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep
+    // eps_s).
     Uncertainty u_weak = u_;
     u_weak.eps_s += slow_radius_;
     nf_ = static_cast<int>(c_.faces().size());
@@ -203,17 +205,52 @@ class SpringProjector {
   // From the edge onto face fi: m = the in-face unit normal of the edge pointing into the face. Impossible
   // when (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) < 0 at both ends of the segment (the left side
   // is convex along the edge): then (p − x̂) . m < −sin(theta_v) |p − x̂| for every sensed x̂.
-  bool may_enter(const Edge& e, int fi, const Vec3& a, const Vec3& b) const {
+  // x -> (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) + decision margin: the robot may enter face fi
+  // from the edge point x only where it is >= 0 (may enter). Convex along the edge.
+  std::function<double(const Vec3&)> enter_margin(const Edge& e, int fi) const {
     const Face& f = c_.faces()[fi];
     Vec3 m = f.normal.cross(e.b - e.a).normalized();
     Vec3 centroid = Vec3::Zero();
     for (const Vec3& q : f.polygon) centroid += q / static_cast<double>(f.polygon.size());
     if ((centroid - e.a).dot(m) < 0) m = -m;
-    const double sv = std::sin(u_.theta_v);
-    for (const Vec3& x : {a, b})
-      if ((p_ - x).dot(m) + u_.eps_s + sv * ((p_ - x).norm() + u_.eps_s) >= -kDecisionMargin * c_.scale())
-        return true;
-    return false;
+    const double sv = std::sin(u_.theta_v), eps = u_.eps_s, margin = kDecisionMargin * c_.scale();
+    const Vec3 p = p_;
+    return [p, m, sv, eps, margin](const Vec3& x) {
+      return (p - x).dot(m) + eps + sv * ((p - x).norm() + eps) + margin;
+    };
+  }
+  // The parameter intervals within [t0, t1] of edge e from which the robot may enter face fi: the interval
+  // minus the open part where enter_margin < 0 (a convex function's sublevel set: one interval, found by a
+  // ternary search for the minimum and bisections for its ends, each end rounded outward).
+  std::vector<std::pair<double, double>> enter_parts(const Edge& e, int fi, double t0, double t1) const {
+    const auto g0 = enter_margin(e, fi);
+    const Vec3 d = e.b - e.a;
+    auto g = [&](double t) { return g0(e.a + t * d); };
+    if (t1 <= t0)
+      return g(t0) >= 0 ? std::vector<std::pair<double, double>>{{t0, t1}}
+                        : std::vector<std::pair<double, double>>{};
+    double lo = t0, hi = t1;
+    for (int i = 0; i < 100; ++i) {  // ternary search for the minimum
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      if (g(m1) <= g(m2))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    const double tm = 0.5 * (lo + hi);
+    if (g(tm) >= 0) return {{t0, t1}};
+    std::vector<std::pair<double, double>> parts;
+    if (g(t0) >= 0) {  // g decreases from t0 to tm: the last t with g >= 0, rounded up
+      double a = t0, b = tm;
+      for (int i = 0; i < 100; ++i) (g(0.5 * (a + b)) >= 0 ? a : b) = 0.5 * (a + b);
+      parts.push_back({t0, std::min(t1, b + kEdgeParamSlack)});
+    }
+    if (g(t1) >= 0) {
+      double a = tm, b = t1;
+      for (int i = 0; i < 100; ++i) (g(0.5 * (a + b)) >= 0 ? b : a) = 0.5 * (a + b);
+      parts.push_back({std::max(t0, a - kEdgeParamSlack), t1});
+    }
+    return parts;
   }
   // The same tests pointwise: a point of face fi strictly within no_slide_radius of p' must leave (the pull
   // points into free space for every sensed position), one within no_leave_radius must stay. 0: no such
@@ -356,11 +393,30 @@ class SpringProjector {
             ? velocity_fly(r_, src, source_face, vm_)
             : spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_);
     for (FlightHit& h : hits) {
+      if (model_ == SpringModel::kVelocity) {
+        // No landing inside the no-slide disk: there every admissible velocity points out of the face, so
+        // near such a point the height above the plane only grows and no path from free space reaches it
+        // (docs/verifier.md "No landing where the pull leaves the face"). The start keeps its points.
+        if (!h.region.is_empty()) {
+          h.region.difference(no_slide_[h.face]);
+          if (h.region.is_empty()) continue;
+        } else if (inside_no_slide(h.face, h.lower)) {
+          continue;
+        }
+      }
       if (!h.region.is_empty())
         add_entry_region(h.face, h.region);
       else
         add_entry_lower(h.face, h.lower);
     }
+  }
+
+  // Every point of `pts` (chart points of face fi) strictly inside the no-slide disk (its inner polygon).
+  bool inside_no_slide(int fi, const Points2& pts) const {
+    if (pts.empty() || no_slide_[fi].is_empty()) return false;
+    for (const Point2& q : pts)
+      if (no_slide_[fi].oriented_side(q) != CGAL::ON_POSITIVE_SIDE) return false;
+    return true;
   }
 
   // The edge's parameter interval about the projection q of p where motion along the edge may go either way
@@ -383,7 +439,7 @@ class SpringProjector {
 
   // Staying on an edge (Buckley §3.3.2 applied to edge contact): the robot keeps an edge contact only while
   // it may push into every face that meets there. Pulling away from one face moves it off the edge line:
-  // into free space at a convex edge, along the other face (a may_enter entry) at a concave one. The pull
+  // into free space at a convex edge, along the other face (a may-enter entry) at a concave one. The pull
   // p − x̂ surely points away from face f, beyond theta_v, when its part along f's normal exceeds
   // sin(theta_v) |p − x̂| for every sensed x̂: (−depth_f − eps_s) > sin(theta_v) (|p − x| + eps_s), i.e. within
   // distance R_f = (−depth_f − eps_s) / sin(theta_v) − eps_s of p. On the edge line |p − x|^2 = perp^2 + (len
@@ -445,12 +501,15 @@ class SpringProjector {
                          std::min(1.0, std::max(iv.t1, tp + w)));
         }
       }
-      // Onto an adjacent face when some admissible velocity points into it (see may_enter).
+      // Onto an adjacent face when some admissible velocity points into it (see enter_parts).
       for (int f : e.faces) {
         const int fi = f;
-        if (!may_enter(e, fi, a, b)) continue;
-        const Point2 ca = r_.charts[fi].project(a), cb = r_.charts[fi].project(b);
-        add_entry_lower(fi, iv.t1 > iv.t0 ? Points2{ca, cb} : Points2{ca});
+        // Only the parts of the interval from which entering is possible.
+        for (const auto& [s0, s1] : enter_parts(e, fi, iv.t0, iv.t1)) {
+          const Point2 ca = r_.charts[fi].project(Vec3(e.a + s0 * d));
+          const Point2 cb = r_.charts[fi].project(Vec3(e.a + s1 * d));
+          add_entry_lower(fi, s1 > s0 ? Points2{ca, cb} : Points2{ca});
+        }
       }
       // Flight: from a concave or flat edge only if every adjacent face may be left, from a convex one if
       // some may; non-manifold edges always.
@@ -542,7 +601,7 @@ class SpringProjector {
   std::vector<PolygonSet2> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
   std::vector<Points2> weak_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
-  double slow_radius_ = 0;                      // slow_stop_radius (velocity model)
+  double slow_radius_ = 0;                     // slow_stop_radius (velocity model)
   std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;
   std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;

@@ -35,6 +35,8 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kSlack = 1e-9;
 // Grid of snap_outward, x scene scale.
 constexpr double kVelocitySnap = 1e-7;
+// Angular margin (rad) by which a face normal must lie inside a piece's tip cone for touches_only_at_tips.
+constexpr double kVelocityTipMargin = 1e-6;
 // Golden-section steps per support bound (the bracket [−1e3, 1e3] shrinks by 0.618 per step; any lambda is
 // sound, so this only sets how tight the bound is).
 constexpr int kGoldenSteps = 60;
@@ -147,6 +149,37 @@ Support ball_support(const Vec3& center, double radius) {
   return [center, radius](const Vec3& w) { return center.dot(w) + radius * w.norm(); };
 }
 
+// The spiral region of one start x0 and one p* (docs/verifier.md "Spiral regions"): every point y of a path
+// whose velocity stays within theta of p* − x has angle(y − p*, x0 − p*) <= tan(theta) ln(r0 / |y − p*|), r0
+// = |x0 − p*|: the solid of revolution about the axis u = (x0 − p*) / r0 bounded by the logarithmic spiral
+// r = r0 e^(−psi / tan theta), psi in [0, pi] (with the ball r <= r0 e^(−pi / tan theta) about p*). Its
+// support in a unit direction w at angle gamma from u is the max over psi of p* . w + r0 e^(−psi / tan theta)
+// cos(psi − gamma), whose derivative in psi has the sign of −cos(psi − gamma − theta): for gamma <= knee =
+// pi/2 − theta the max is at psi = 0, the tip x0 (x0 . w, whatever p* is); beyond the knee at psi = gamma −
+// knee, where it is p* . w + r0 e^(−(gamma − knee) / tan theta) sin(theta), decreasing in gamma.
+double spiral_factor(double gamma, double theta) {
+  const double knee = kPi / 2 - theta;
+  return std::max(std::exp(-std::max(0.0, gamma - knee) / std::tan(theta)) * std::sin(theta),
+                  std::exp(-kPi / std::tan(theta)));
+}
+
+// The same support relative to the tip: (support − x0 . w) / r0 = G(gamma) − cos(gamma), G = the factor
+// above with cos(gamma) below the knee. It is 0 up to the knee and increasing on [knee, pi − knee] (its
+// derivative sin(gamma) − cos(theta) e^(−(gamma − knee) / tan theta) is >= 0 there, as sin(gamma) >=
+// sin(knee) = cos(theta)). Returns an upper bound of its max over gamma in [lo, hi] (the translation of p*
+// cancels: only r0 and the angle matter).
+double spiral_excess(double lo, double hi, double theta) {
+  const double knee = kPi / 2 - theta, top = kPi - knee, T = std::tan(theta);
+  lo = std::clamp(lo, 0.0, kPi);
+  hi = std::clamp(hi, 0.0, kPi);
+  if (hi <= knee) return 0;
+  auto excess = [&](double g) { return std::exp(-(g - knee) / T) * std::sin(theta) - std::cos(g); };
+  double best = excess(std::min(hi, top));  // the increasing part's largest value
+  if (hi > top)                             // beyond top: each term bounded on its own
+    best = std::max(best, std::exp(-(std::max(lo, top) - knee) / T) * std::sin(theta) - std::cos(hi));
+  best = std::max(best, std::exp(-kPi / T) - std::cos(hi));  // the ball r <= r0 e^(−pi / tan theta)
+  return std::max(0.0, best);
+}
 // A convex source piece (polygon, segment or point, 3-D doubles) cut by the plane n . x = c: the parts on
 // either side, each grown across the plane by `margin` (their union covers the piece).
 std::pair<std::vector<Vec3>, std::vector<Vec3>> cut(const std::vector<Vec3>& piece, const Vec3& n, double c,
@@ -176,6 +209,28 @@ double distance_in_plane(const std::vector<Vec3>& poly, const Vec3& n, const Vec
   return distance_to_convex_polygon(q, poly, turn < 0 ? Vec3(-n) : n);
 }
 
+// Where the spiral bound of a piece is its tips alone: directions w with angle(w, a) + axis_error below the
+// knee pi/2 − theta (spiral_factor).
+struct TipCone {
+  bool active = false;
+  Vec3 a = Vec3::UnitZ();
+  double axis_error = 0, theta = 0;
+};
+
+// The flight region of a piece meets face f's plane only in the piece's own points there: the piece lies
+// on the closed back side of the plane (n . x <= c) and n is strictly inside the tip cone, so the spiral
+// bound's support is the piece's own near n (by continuity) and the region's exposed face in direction n is
+// the piece's (its points on the plane, where the robot already is: the edges and vertices they lie on are
+// reached and seed their faces, may_enter). No landing on f.
+bool touches_only_at_tips(const Face& f, const std::vector<Vec3>& piece, const TipCone& tips) {
+  if (!tips.active) return false;
+  if (angle_between(f.normal, tips.a) + tips.axis_error + kVelocityTipMargin > kPi / 2 - tips.theta)
+    return false;
+  for (const Vec3& x : piece)
+    if (f.normal.dot(x) > f.offset) return false;
+  return true;
+}
+
 // One piece's reach (see the file comment) into `regions` / `lowers`.
 void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int source_face,
                const VelocitySpring& m, double r_lower, std::map<int, std::vector<Polygon2>>* regions,
@@ -193,6 +248,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
   const double ball = std::min(rmax + 2 * eps, m.reach) * (1 + kSlack) + kSlack * scale;
   std::vector<Support> bounds = {ball_support(p, ball)};
   std::vector<int> skip_faces;
+  TipCone tips;
   if (r_lower > eps * (1 + 1e-6) + kSlack * scale && mean.norm() > 1e-9 * static_cast<double>(piece.size())) {
     // Tube: conv(piece ∪ B(p, eps)) ⊕ ball(rho).
     const double rho = spring_spiral_deviation(m.u.theta_v) * (rmax + eps) * (1 + kSlack) + kSlack * scale;
@@ -205,8 +261,33 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
     const Vec3 a = mean.normalized();
     double sigma = 0;
     for (const Vec3& x : piece) sigma = std::max(sigma, angle_between(a, x - p));
-    const double angle = m.u.theta_v + sigma * (1 + kSlack) +
-                         std::asin(std::min(1.0, eps / r_lower)) * (1 + kSlack) + 2 * kSlack;
+    const double axis_error = sigma * (1 + kSlack) + std::asin(std::min(1.0, eps / r_lower)) * (1 + kSlack);
+    const double angle = m.u.theta_v + axis_error + 2 * kSlack;
+    // Spiral regions over the piece and B(p, eps): x0 − p* is within axis_error of a (x0 − p is within sigma
+    // of a, and p* − p turns it by at most asin(eps / |x0 − p|)), so gamma lies within axis_error of
+    // angle(w, a). Where gamma may pass the knee, the spiral part is bounded with p* . w <= p . w + eps |w|,
+    // r0 <= R + eps and the least gamma; otherwise only the tips count (the piece's own support).
+    if (m.u.theta_v > 0) {
+      tips = {true, a, axis_error, m.u.theta_v};
+      const double theta = m.u.theta_v, r0 = (rmax + eps) * (1 + kSlack);
+      bounds.push_back([piece, p, a, eps, theta, r0, axis_error](const Vec3& w) {
+        const double norm = w.norm();
+        double tip = -std::numeric_limits<double>::infinity();
+        for (const Vec3& x : piece) tip = std::max(tip, x.dot(w));
+        if (norm == 0) return tip;
+        const double gamma_a = angle_between(w, a), knee = kPi / 2 - theta;
+        if (gamma_a + axis_error + kSlack <= knee) return tip;
+        const double gamma = std::max(0.0, gamma_a - axis_error - kSlack);
+        // Two bounds of the union's support, both sound; the lesser: translated by the p* error, or relative
+        // to the tips (spiral_excess over the gamma range).
+        const double spiral =
+            p.dot(w) + norm * (eps * (1 + kSlack) + r0 * spiral_factor(gamma, theta) * (1 + kSlack) + kSlack);
+        const double relative =
+            tip +
+            norm * (r0 * spiral_excess(gamma, gamma_a + axis_error + kSlack, theta) * (1 + kSlack) + kSlack);
+        return std::min(std::max(tip, spiral), relative);
+      });
+    }
     if (angle + kVelocityPointedMargin < kPi / 2) {
       const FlightCone cone = flight_cone(-a, angle, scale);
       // A face whose plane holds the piece while every ray of the cone points strictly to one side of it
@@ -239,6 +320,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
   for (int fi = 0; fi < nf; ++fi) {
     if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end())
       continue;
+    if (touches_only_at_tips(g.cspace->faces()[fi], piece, tips)) continue;
     const Points2 section = support_section(g, fi, bounds);
     if (section.size() < 3 && !section.empty()) {
       // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving
@@ -420,13 +502,74 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
   }
   PolygonSet2 out(to_polygon(tube));
   if (dmin <= eps * (1 + 1e-6) + margin || mean.norm() == 0) return out;
-  // Forward wedge ∪ the disk d <= d_w (about p*', so within d_w + eps of p').
   const Vec3 axis = mean.normalized();
   const Vec3 axis_perp = face.normal.cross(axis);
   double spread = 0;
   for (const Vec3& w : in_plane)
     spread = std::max(spread, std::abs(std::atan2(w.dot(axis_perp), w.dot(axis))));
   const double shift = std::asin(std::min(1.0, eps / dmin)) * (1 + kSlack) + kSlack;
+  // In-plane spiral regions (docs/verifier.md "Spiral regions"): while d >= d_f > zone the in-plane angle is
+  // at most beta(d_f), so the path lies in the spiral region of angle beta(d_f) from its entry about p*', or
+  // within d_f of p*' once it gets there (d never grows back past d_f). Each floor d_f gives a convex bound;
+  // the region lies in all of them, so the least support is a bound.
+  {
+    const double axis_error = spread * (1 + kSlack) + shift;
+    struct Floor {
+      double d, beta;
+    };
+    std::vector<Floor> floors;
+    constexpr int kFloors = 8;
+    for (int k = 0; k < kFloors; ++k) {
+      const double t = static_cast<double>(k) / kFloors;
+      const double d_f = zone * (1 + 1e-3) + (d0 - zone) * t * t;
+      const double sb = sin_v * std::hypot(d_f, H) / d_f;
+      if (d_f <= 0 || sb >= std::sin(kPi / 2 - kVelocityPointedMargin)) continue;
+      floors.push_back({d_f, std::asin(sb) * (1 + kSlack) + kSlack});
+    }
+    if (!floors.empty()) {
+      const Vec3 n = face.normal;
+      const double c_plane = face.offset;
+      const Vec3 pc = center;
+      const double r0 = d0 * (1 + kSlack);
+      const double d_lo = std::max(0.0, dmin - eps);  // <= |e − p*'| for every entry e and p*'
+      Support spiral = [lifted_part, n, c_plane, pc, axis, eps, r0, d_lo, axis_error, floors](const Vec3& w) {
+        const Vec3 wt = w - w.dot(n) * n;
+        const double norm = wt.norm();
+        double tip = -std::numeric_limits<double>::infinity();
+        for (const Vec3& x : lifted_part) tip = std::max(tip, x.dot(wt));
+        if (norm == 0) return w.dot(n) * c_plane;
+        const double gamma_a = angle_between(wt, axis);
+        const double gamma = std::max(0.0, gamma_a - axis_error - kSlack);
+        double best = std::numeric_limits<double>::infinity();
+        const double gamma_hi = std::min(kPi, gamma_a + axis_error + kSlack);
+        // d_e cos(gamma) over the entries (d_e in [d_lo, r0]) is at least this:
+        const double cos_hi = std::cos(gamma_hi);
+        const double min_proj = cos_hi >= 0 ? d_lo * cos_hi : r0 * cos_hi;
+        for (const Floor& f : floors) {
+          // Translated bound: the spiral or the floor's disk about p*'.
+          double v = tip;
+          if (gamma_hi > kPi / 2 - f.beta)
+            v = std::max(v, pc.dot(wt) + norm * (eps * (1 + kSlack) +
+                                                 r0 * spiral_factor(gamma, f.beta) * (1 + kSlack) + kSlack));
+          v = std::max(v, pc.dot(wt) + norm * ((eps + f.d) * (1 + kSlack) + kSlack));
+          // Relative to the tips: the spiral's excess, or the disk's d_f − d_e cos(gamma).
+          const double rel = std::max(r0 * spiral_excess(gamma, gamma_hi, f.beta), f.d - min_proj);
+          v = std::min(v, tip + norm * (std::max(0.0, rel) * (1 + kSlack) + kSlack));
+          best = std::min(best, v);
+        }
+        return best + w.dot(n) * c_plane;
+      };
+      const Points2 bound = support_section(g, fi, {spiral});
+      if (bound.size() < 3) {  // a segment or point (on the face): the whole slide
+        *lower = bound;
+        return PolygonSet2();
+      }
+      PolygonSet2 tight = out;
+      tight.intersection(PolygonSet2(to_polygon(bound)));
+      if (!tight.is_empty()) out = std::move(tight);  // else a lower-dimensional meet: keep the tube (sound)
+    }
+  }
+  // Forward wedge ∪ the disk d <= d_w (about p*', so within d_w + eps of p').
   const double d_w = std::max(0.5 * dmin, 1.5 * zone);
   const double beta_w = std::asin(std::min(1.0, sin_v * std::hypot(d_w, H) / d_w)) * (1 + kSlack) + kSlack;
   const double half = beta_w + spread * (1 + kSlack) + shift;

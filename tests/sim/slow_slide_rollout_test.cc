@@ -1,7 +1,8 @@
-// The rollouts' sticking rule (controllers/termination.h: mean speed over kStopWindow below kStopRelativeSpeed
-// x the reference speed) also stops a robot that slides slowly, which Coulomb's sticking does not. Shown by
-// physics here, with the verifier's answer (VerifyOptions::stop_relative_speed, docs/verifier.md "Slow
-// slides count as stops") on both sides of the bound asin(kappa) = .0100002 rad beyond theta_v.
+// The rollouts' sticking rule (controllers/termination.h: mean speed over kStopWindow below
+// kStopRelativeSpeed x the reference speed) also stops a robot that slides slowly, which Coulomb's sticking
+// does not. Shown by physics here, with the verifier's answer (VerifyOptions::stop_relative_speed,
+// docs/verifier.md "Slow slides count as stops") on both sides of the bound asin(kappa) = .0100002 rad beyond
+// theta_v.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,8 +48,8 @@ Outcome roll(const std::shared_ptr<const LoadedTask>& task, int n) {
 // slides, at V sin(alpha' - phi) / cos(phi) <= V sin(.014) / cos(phi) = .0144 V... and at least
 // V sin(.004) / cos(phi) = .0041 V. Velocities nearer the cone than asin(.01) = .0100 slide slower than
 // 1 % of V: the rule may fire on the floor. Rollouts whose error turns the velocity toward the cone (half of
-// 16 of 24 with seed 7, measured) do stop on the floor near the start; the Coulomb prediction misses them, the slow-stop
-// prediction holds them.
+// 16 of 24 with seed 7, measured) do stop on the floor near the start; the Coulomb prediction misses them,
+// the slow-stop prediction holds them.
 TEST(SlowSlideRollout, SlowSlidesStopOnTheFloorAndOnlyTheSlowStopPredictionHoldsThem) {
   const auto task = load_task_from_string(floor_push(0.004), "slow_slide");
   const Strategy& s = *task->task.find_strategy("s");
@@ -59,7 +60,8 @@ TEST(SlowSlideRollout, SlowSlidesStopOnTheFloorAndOnlyTheSlowStopPredictionHolds
   for (const RolloutOutcome& r : out.rollouts) {
     ASSERT_FALSE(r.unstable) << r.index << ": " << r.unstable_reason;
     EXPECT_EQ(r.termination, Termination::kSticking) << r.index;
-    EXPECT_LE(slow.steps[0].termination.distance(r.end), out.tolerance) << r.index << " " << r.end.transpose();
+    EXPECT_LE(slow.steps[0].termination.distance(r.end), out.tolerance)
+        << r.index << " " << r.end.transpose();
     if (r.end.x() < 4) {
       ++floor_stops;
       EXPECT_GT(coulomb.steps[0].termination.distance(r.end), 0.5) << r.index << " " << r.end.transpose();

@@ -50,7 +50,8 @@ TEST(SlowStop, DamperNeverTestWidensByAsinKappa) {
     const double alpha = std::atan(0.5) + 0.1 + beyond;
     const Vec3 v(std::sin(alpha), 0, -std::cos(alpha));
     EXPECT_EQ(classify_damper(cones, floor, v, 0.1), StickClass::kNever) << beyond;
-    EXPECT_EQ(classify_damper(cones, floor, v, 0.1, stop), beyond < stop ? StickClass::kMay : StickClass::kNever)
+    EXPECT_EQ(classify_damper(cones, floor, v, 0.1, stop),
+              beyond < stop ? StickClass::kMay : StickClass::kNever)
         << beyond;
   }
   EXPECT_EQ(classify_damper(cones, floor, -Vec3::UnitZ(), 0.1, stop), StickClass::kMust);

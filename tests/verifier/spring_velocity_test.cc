@@ -79,8 +79,10 @@ struct Path {
   bool stuck = false;
 };
 
+// `extreme`: the error turns the velocity by exactly theta toward a fixed axis drawn from +-y, +-z (the
+// lateral and the lifting extreme spirals of App. B) half the time, else as below.
 Path simulate(const Vec3& start, const Vec3& p, double eps, double theta, double mu, bool block,
-              std::mt19937& rng) {
+              std::mt19937& rng, bool extreme = false) {
   std::uniform_real_distribution<double> unit(-1, 1), frac(0, 1);
   auto random_unit = [&] {
     Vec3 v;
@@ -91,6 +93,13 @@ Path simulate(const Vec3& start, const Vec3& p, double eps, double theta, double
   const Vec3 target = p - random_unit() * eps * std::cbrt(frac(rng));  // p* in the ball
   Vec3 axis = random_unit();
   double angle = frac(rng) < 0.5 ? theta : theta * frac(rng);
+  bool fixed = false;
+  if (extreme && frac(rng) < 0.5) {
+    const Vec3 axes[] = {Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+    axis = axes[static_cast<int>(4 * frac(rng)) % 4];
+    angle = theta;
+    fixed = true;
+  }
   Path out;
   Vec3 x = start;
   const double h = 1e-3;
@@ -99,7 +108,7 @@ Path simulate(const Vec3& start, const Vec3& p, double eps, double theta, double
   };
   auto on_floor = [&](const Vec3& q) { return std::abs(q.z()) < 1e-12; };
   for (int i = 0; i < 200'000; ++i) {
-    if (frac(rng) < 0.002) {  // the error may switch (§3.2.1)
+    if (!fixed && frac(rng) < 0.002) {  // the error may switch (§3.2.1)
       axis = random_unit();
       angle = frac(rng) < 0.5 ? theta : theta * frac(rng);
     }
@@ -204,6 +213,56 @@ TEST(SpringVelocity, FlightOffABlockContainsTheModelsPathsAndExcludesWhatItCanno
     ASSERT_TRUE(path.stuck) << k;
     ASSERT_LT(pr.termination.distance(path.end), 1e-6) << k;
   }
+}
+
+// The hole task's error sizes (eps_s = .2, theta_v = .25), where the spiral regions (docs/verifier.md
+// "Spiral regions") bound flights and slides more tightly than the tubes: every path of the model's dynamics,
+// extreme spirals included (lateral and lifting), must still lie in the prediction. Floor: mu = .25, from
+// (3, 0, 0) toward p = (0, 0, -2): slides (and hops: the pull is within theta_v of the floor there).
+std::string wide_scene(const std::string& cspace, const std::string& start, const std::string& p, double mu,
+                       double eps = 0.2) {
+  const std::string e = std::to_string(eps);
+  return "name: t\nunits: in\nfriction: " + std::to_string(mu) + "\nuncertainty: {eps_s: " + e +
+         ", eps_p: 0.2, theta_v: 0.25, theta_f: 0.1, step: 0.2}\ncspace: " + cspace +
+         "\nbounds: {min: [-5, -5, 0], max: [5, 5, 5]}\nstart: {point: " + start +
+         "}\ngoal: {point: " + start + "}\nmotions:\n  m: {spring: " + p + "}\nstrategies:\n  s: [m]\n";
+}
+
+// eps_s = .2 (the hole's) and .02 (where the in-plane angle beta(d), not the p* error, shapes the slide).
+TEST(SpringVelocity, WideErrorsFloorSlidesAndHopsStayInThePrediction) {
+  for (const double eps : {0.2, 0.02}) {
+    const VelocityProjected r = project_velocity(wide_scene("[]", "[3, 0, 0]", "[0, 0, -2]", 0.25, eps));
+    const SpringProjection& pr = r.projection;
+    EXPECT_FALSE(pr.fallback);
+    std::mt19937 rng(5);
+    int stuck = 0;
+    for (int k = 0; k < 300; ++k) {
+      const Path path = simulate(Vec3(3, 0, 0), Vec3(0, 0, -2), eps, 0.25, 0.25, false, rng, true);
+      for (const Vec3& q : path.contact) ASSERT_LT(pr.reached.distance(q), 1e-6) << k << " " << q.transpose();
+      if (!path.stuck) continue;
+      ++stuck;
+      ASSERT_LT(pr.termination.distance(path.end), 1e-6) << k;
+    }
+    EXPECT_GT(stuck, 100);
+  }
+}
+
+// Flights off a block's top toward p = (4, 0, -1) with the hole's error sizes, lifting spirals included.
+TEST(SpringVelocity, WideErrorsFlightsOffABlockStayInThePrediction) {
+  const VelocityProjected r = project_velocity(
+      wide_scene("\n  - box: {min: [-1, -1, 0], max: [1, 1, 1]}", "[0, 0, 1]", "[4, 0, -1]", 0.5));
+  const SpringProjection& pr = r.projection;
+  EXPECT_FALSE(pr.fallback);
+  std::mt19937 rng(13);
+  int stuck = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Path path = simulate(Vec3(0, 0, 1), Vec3(4, 0, -1), 0.2, 0.25, 0.5, true, rng, true);
+    for (const Vec3& q : path.contact) ASSERT_LT(pr.reached.distance(q), 1e-6) << k << " " << q.transpose();
+    if (!path.stuck) continue;
+    ++stuck;
+    ASSERT_LT(pr.termination.distance(path.end), 1e-6) << k;
+  }
+  EXPECT_GT(stuck, 100);
 }
 
 // The CLI selects the model; the verdict for the cube's single sticking motion is reliable under both.
