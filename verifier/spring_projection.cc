@@ -317,19 +317,33 @@ class SpringProjector {
       for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
       if (!stuck && may_stay(fi, lifted(fi, l))) entry_pts.insert(entry_pts.end(), l.begin(), l.end());
     }
-    const Points2 entry_hull = hull_or_points(entry_pts);
-    if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
     if (model_ == SpringModel::kVelocity) {
-      Points2 lower;
-      PolygonSet2 slid = velocity_slide(r_, fi, entry_hull, vm_, &lower);
-      if (!slid.is_empty()) {
-        slid.difference(no_slide_[fi]);
-        add_reached_region(fi, slid);
-      } else if (!lower.empty()) {
-        add_reached_lower(fi, lower);
+      // Each convex entry piece and each lower entry on its own (their union is what the hull bounds, more
+      // tightly: the spiral bounds are per source).
+      std::vector<Points2> sources = convex_pieces(entry);
+      for (const Points2& l : lower) {
+        bool stuck = !strong_poly_[fi].empty();
+        for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
+        if (!stuck) sources.push_back(l);
+      }
+      PolygonSet2 slid_all;
+      for (const Points2& src : sources) {
+        if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
+        Points2 lower_out;
+        PolygonSet2 slid = velocity_slide(r_, fi, src, vm_, &lower_out);
+        if (!slid.is_empty())
+          slid_all.join(slid);
+        else if (!lower_out.empty())
+          add_reached_lower(fi, lower_out);
+      }
+      if (!slid_all.is_empty()) {
+        slid_all.difference(no_slide_[fi]);
+        add_reached_region(fi, slid_all);
       }
       return;
     }
+    const Points2 entry_hull = hull_or_points(entry_pts);
+    if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
     const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_,
                                        in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {

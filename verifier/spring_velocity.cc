@@ -618,22 +618,42 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
   const double radial_limit = m.u.eps_s / (4 * std::max(std::tan(m.u.theta_v), 1e-3));
   std::vector<Polygon2> polys;
   Points2 first_lower;
-  split_source(poly, center, m.u.eps_s, radial_limit, kSlack * g.cspace->scale(),
-               [&](const std::vector<Vec3>& piece, double) {
-                 Points2 pts;
-                 for (const Vec3& x : piece) pts.push_back(chart.project(x));
-                 // the chart image of the double piece, rounded outward (covers the cut's rounding)
-                 pts = minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
-                 Points2 piece_lower;
-                 PolygonSet2 region = slide_piece(g, fi, pts, m, &piece_lower);
-                 if (!region.is_empty()) {
-                   std::vector<PolygonWithHoles2> pwhs;
-                   region.polygons_with_holes(std::back_inserter(pwhs));
-                   for (const PolygonWithHoles2& pwh : pwhs) polys.push_back(pwh.outer_boundary());
-                 } else if (!piece_lower.empty() && first_lower.empty()) {
-                   first_lower = piece_lower;
-                 }
-               });
+  // A source near p' (within 2 eps_s) cannot be cut into pieces whose directions from p' are defined (the
+  // spiral bounds need them): first cut it by the four lines of the square of half-side 2 eps_s about p'
+  // (face frame), so that every part but the central one stays 2 eps_s from p'.
+  std::vector<std::vector<Vec3>> parts = {poly};
+  const double rho = 2 * m.u.eps_s, cut_margin = kSlack * g.cspace->scale();
+  if (m.u.eps_s > 0 && distance_in_plane(poly, face.normal, center) <= rho) {
+    Vec3 e1, e2;
+    face_frame(face.normal, &e1, &e2);
+    for (const Vec3& dir : {e1, e2}) {
+      std::vector<std::vector<Vec3>> next;
+      for (const std::vector<Vec3>& part : parts) {
+        auto [below, rest] = cut(part, dir, dir.dot(center) - rho, cut_margin);
+        auto [middle, above] = cut(rest, dir, dir.dot(center) + rho, cut_margin);
+        for (auto* q : {&below, &middle, &above})
+          if (!q->empty()) next.push_back(std::move(*q));
+      }
+      parts = std::move(next);
+    }
+  }
+  for (const std::vector<Vec3>& part : parts)
+    split_source(part, center, m.u.eps_s, radial_limit, kSlack * g.cspace->scale(),
+                 [&](const std::vector<Vec3>& piece, double) {
+                   Points2 pts;
+                   for (const Vec3& x : piece) pts.push_back(chart.project(x));
+                   // the chart image of the double piece, rounded outward (covers the cut's rounding)
+                   pts = minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
+                   Points2 piece_lower;
+                   PolygonSet2 region = slide_piece(g, fi, pts, m, &piece_lower);
+                   if (!region.is_empty()) {
+                     std::vector<PolygonWithHoles2> pwhs;
+                     region.polygons_with_holes(std::back_inserter(pwhs));
+                     for (const PolygonWithHoles2& pwh : pwhs) polys.push_back(pwh.outer_boundary());
+                   } else if (!piece_lower.empty() && first_lower.empty()) {
+                     first_lower = piece_lower;
+                   }
+                 });
   PolygonSet2 out;
   if (!polys.empty()) out.join(polys.begin(), polys.end());
   if (out.is_empty()) *lower = first_lower;
