@@ -44,14 +44,17 @@ Points2 velocity_reach_section(const ReachedSet::Impl& geometry, int fi, const V
 
 // Free-space reach from the convex source conv(src): for every face g but `source_face`, per piece X of the
 // source, g ∩ (conv(X ∪ B(p, eps_s)) ⊕ ball(delta (R + eps_s))) ∩ ball(p, min(R + 2 eps_s, reach)) ∩ (X +
-// cone(−a, theta_v + sigma + asin(eps_s / R_min))) (R: max |x − p| over X; a, sigma: X's mean direction
-// from p and angular radius about it). No occlusion (paths bend).
+// cone(−a, theta_v + sigma + asin(eps_s / R_min))) ∩ the spiral regions (R: max |x − p| over X; a, sigma: X's
+// mean direction from p and angular radius about it). No occlusion (paths bend); no landing on a face the
+// flight meets only in the piece's own points.
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std::vector<Point3>& src,
                                     int source_face, const VelocitySpring& m);
 
 // Sliding on face fi from the convex chart piece `part` (1, 2 or more points): the face ∩ (conv(part ∪
-// disk(p', eps_s)) ⊕ disk(L)) ∩ disk(p', max(d0, zone) + eps_s) ∩ (the forward wedge ∪ the disk d <= d_w) ∩
-// the reach bound. Returns the region (area) or, when it has none, fills `lower` with a segment or point.
+// disk(p', eps_s)) ⊕ disk(L)) ∩ disk(p', max(d0, zone) + eps_s) ∩ the in-plane spiral regions ∩ (the forward
+// wedge ∪ the disk d <= d_w) ∩ the reach bound, per piece (a part within 2 eps_s of p' is first cut by the
+// square of half-side 2 eps_s about p'). Returns the region (area) or, when it has none, fills `lower` with a
+// segment or point.
 PolygonSet2 velocity_slide(const ReachedSet::Impl& geometry, int fi, const Points2& part,
                            const VelocitySpring& m, Points2* lower);
 
