@@ -118,10 +118,11 @@ void add_verify_command(CLI::App& app, CommandState& state) {
           CLI::CheckedTransformer(std::map<std::string, SpringModel>{{"velocity", SpringModel::kVelocity},
                                                                      {"via-point", SpringModel::kViaPoint}},
                                   CLI::ignore_case));
-  cmd->add_option("--stop-relative-speed", options->stop_relative_speed,
-                  "kappa of the stop rule: a slide slower than kappa x the motion's reference speed counts as "
-                  "a stop, as in the rollouts (default " + std::to_string(kStopRelativeSpeed) +
-                      "); 0 = Coulomb sticking only (the thesis)")
+  cmd->add_option(
+         "--stop-relative-speed", options->stop_relative_speed,
+         "kappa of the stop rule: a slide slower than kappa x the motion's reference speed counts as "
+         "a stop, as in the rollouts (default " +
+             std::to_string(kStopRelativeSpeed) + "); 0 = Coulomb sticking only (the thesis)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
@@ -140,7 +141,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     }
     VerifyResult result;
     try {
-      result = verify_strategy(*task, strategy, VerifyOptions{options->spring_model, options->stop_relative_speed});
+      result = verify_strategy(*task, strategy,
+                               VerifyOptions{options->spring_model, options->stop_relative_speed});
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;

@@ -79,9 +79,10 @@ class Projector {
     const double stop_angle = std::asin(std::min(1.0, std::max(0.0, stop_relative_speed)));
     for (int id = 0; id < c_.atom_count(); ++id) {
       cls_.push_back(classify_damper(cones, id, v_, theta_v_));
-      stops_.push_back(stop_angle > 0
-                           ? classify_damper(cones, id, v_, theta_v_, stop_angle) != StickClass::kNever
-                           : cls_.back() != StickClass::kNever);
+      // Only a "never" atom can change class under the wider test.
+      stops_.push_back(
+          cls_.back() != StickClass::kNever ||
+          (stop_angle > 0 && classify_damper(cones, id, v_, theta_v_, stop_angle) != StickClass::kNever));
     }
     for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
     cone_ = flight_cone(v_, theta_v_, c_.scale());

@@ -202,11 +202,9 @@ class SpringProjector {
   bool may_stay(int fi, const std::vector<Vec3>& pts) const {
     return !(-depth_[fi] - u_.eps_s > tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
   }
-  // From the edge onto face fi: m = the in-face unit normal of the edge pointing into the face. Impossible
-  // when (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) < 0 at both ends of the segment (the left side
-  // is convex along the edge): then (p − x̂) . m < −sin(theta_v) |p − x̂| for every sensed x̂.
-  // x -> (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) + decision margin: the robot may enter face fi
-  // from the edge point x only where it is >= 0 (may enter). Convex along the edge.
+  // From the edge onto face fi (m = the in-face unit normal of the edge pointing into the face): where
+  // x -> (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) + decision margin is < 0, (p − x̂) . m <
+  // −sin(theta_v) |p − x̂| for every sensed x̂ and the robot cannot enter. Convex along the edge.
   std::function<double(const Vec3&)> enter_margin(const Edge& e, int fi) const {
     const Face& f = c_.faces()[fi];
     Vec3 m = f.normal.cross(e.b - e.a).normalized();
@@ -309,23 +307,12 @@ class SpringProjector {
     if (entry.is_empty() && lower.empty()) return;
     entry.difference(strong_[fi]);
     entry.difference(no_slide_[fi]);
-    Points2 entry_pts;
-    for (const Points2& part : convex_pieces(entry))
-      entry_pts.insert(entry_pts.end(), part.begin(), part.end());
-    for (const Points2& l : lower) {
-      bool stuck = !strong_poly_[fi].empty();  // inside the strong configurations: it sticks (Alg 4.4)
-      for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
-      if (!stuck && may_stay(fi, lifted(fi, l))) entry_pts.insert(entry_pts.end(), l.begin(), l.end());
-    }
     if (model_ == SpringModel::kVelocity) {
       // Each convex entry piece and each lower entry on its own (their union is what the hull bounds, more
       // tightly: the spiral bounds are per source).
       std::vector<Points2> sources = convex_pieces(entry);
-      for (const Points2& l : lower) {
-        bool stuck = !strong_poly_[fi].empty();
-        for (const Point2& q : l) stuck = stuck && inside_closed(strong_poly_[fi], q);
-        if (!stuck) sources.push_back(l);
-      }
+      for (const Points2& l : lower)
+        if (!sticks_strongly(fi, l)) sources.push_back(l);
       PolygonSet2 slid_all;
       for (const Points2& src : sources) {
         if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
@@ -342,6 +329,12 @@ class SpringProjector {
       }
       return;
     }
+    Points2 entry_pts;
+    for (const Points2& part : convex_pieces(entry))
+      entry_pts.insert(entry_pts.end(), part.begin(), part.end());
+    for (const Points2& l : lower)
+      if (!sticks_strongly(fi, l) && may_stay(fi, lifted(fi, l)))
+        entry_pts.insert(entry_pts.end(), l.begin(), l.end());
     const Points2 entry_hull = hull_or_points(entry_pts);
     if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
     const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_,
@@ -354,6 +347,14 @@ class SpringProjector {
     } else if (!strip.empty()) {
       add_reached_lower(fi, strip);
     }
+  }
+
+  // A lower entry inside the face's strong configurations sticks where it enters (Alg 4.4).
+  bool sticks_strongly(int fi, const Points2& l) const {
+    if (strong_poly_[fi].empty()) return false;
+    for (const Point2& q : l)
+      if (!inside_closed(strong_poly_[fi], q)) return false;
+    return true;
   }
 
   // New reached parts: the edges and corners they touch, then one flight from the hull of what may leave.
