@@ -14,7 +14,9 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 
+#include "verifier/atom_cone.h"
 #include "verifier/internal/fixpoint.h"
 #include "verifier/internal/spring_flight.h"
 #include "verifier/internal/spring_velocity.h"
@@ -58,6 +60,8 @@ class SpringProjector {
     pend_edge_.resize(ne_);
     face_growths_.assign(nf_, 0);
     edge_growths_.assign(ne_, 0);
+    face_growth_step_.assign(nf_, -1);
+    edge_growth_step_.assign(ne_, -1);
     pend_vertex_.assign(nv_, 0);
     for (int fi = 0; fi < nf_; ++fi) {
       const Face& f = c_.faces()[fi];
@@ -87,8 +91,11 @@ class SpringProjector {
     }
     for (int id = nf_; id < c_.atom_count(); ++id) {
       const SpringStickingRegions reg = spring_sticking_regions(c_, id, u_);
-      weak_atom_.push_back(slow_radius_ > 0 ? spring_sticking_regions(c_, id, u_weak).weak.contains(p_)
-                                            : reg.weak.contains(p_));
+      const bool weak = slow_radius_ > 0 ? spring_sticking_regions(c_, id, u_weak).weak.contains(p_)
+                                         : reg.weak.contains(p_);
+      // The velocity model also tests the force cone against the atom's cone directly (both are sound, so
+      // both must allow sticking).
+      weak_atom_.push_back(weak && (model_ != SpringModel::kVelocity || velocity_may_stick(id)));
       strong_atom_.push_back(reg.strong.contains(p_));
     }
     // The start: entries on faces, new intervals and vertices.
@@ -132,13 +139,69 @@ class SpringProjector {
   }
 
  private:
+  // Velocity model, an edge or vertex: the robot may stick at some x of the atom iff the reaction cone FC
+  // meets −F for an imparted force F within theta_v of p* − x, i.e. iff FC meets cone(x − p*, theta_v). Over
+  // x in the atom (the directions to a segment lie within the larger of the angles to its ends from the
+  // direction to its midpoint) and p* within eps_s (+ the slow-stop radius) of p, x − p* lies within that
+  // angle + asin(r / dist(p, atom)) of m − p. Tighter than spring_sticking_regions' widened generators at
+  // vertices, whose three or more cones rotated by theta_v can surround the origin (e.g. mu = .48,
+  // theta_v = .25 at a corner of three orthogonal faces) although the sum widened by theta_v is pointed.
+  bool velocity_may_stick(int id) const {
+    const std::vector<Vec3> pts = atom_points(c_, id);
+    Vec3 m = Vec3::Zero();
+    for (const Vec3& x : pts) m += x;
+    m /= static_cast<double>(pts.size());
+    const double r = u_.eps_s + slow_radius_;
+    double dist = (m - p_).norm();
+    if (pts.size() == 2) {  // distance from p to the segment
+      const Vec3 d = pts[1] - pts[0];
+      const double t = std::clamp((p_ - pts[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      dist = (pts[0] + t * d - p_).norm();
+    }
+    if (dist <= r * (1 + kSpringRelativeSlack) || (m - p_).norm() == 0) return true;
+    const Vec3 axis = (m - p_).normalized();
+    double spread = 0;
+    for (const Vec3& x : pts) {
+      const Vec3 dx = x - p_;
+      if (dx.norm() == 0) return true;
+      spread = std::max(spread, std::acos(std::clamp(axis.dot(dx.normalized()), -1.0, 1.0)));
+    }
+    const double half =
+        (spread + u_.theta_v + std::asin(std::min(1.0, r / dist))) * (1 + kSpringRelativeSlack);
+    if (half >= std::numbers::pi / 2) return true;  // not a pointed cone: no bound
+    return atom_friction_cone(c_, id).may_intersect_cone(CircularCone{axis, half});
+  }
+
   // ---- adding ----
+  // Widening counts the fixpoint rounds (work items) in which an atom grew, not the additions: one flight's
+  // pieces may add dozens of abutting slivers to an edge at once. Returns the round count after this growth
+  // (unchanged when the atom already grew in this work item).
+  int grew_this_round(std::vector<int>& count, std::vector<int>& last_step, int i) const {
+    if (last_step[i] == steps_) return -1;
+    last_step[i] = steps_;
+    return ++count[i];
+  }
   void add_reached_region(int fi, const PolygonSet2& part) {
     PolygonSet2 added;
     if (!r_.add_region(fi, part, &added)) return;
     pend_new_[fi].join(added);
-    if (++face_growths_[fi] == kSpringWideningRounds) {  // widening: the whole face (a superset)
+    const int rounds = grew_this_round(face_growths_, face_growth_step_, fi);
+    if (rounds == kSpringWideningRounds) {  // widening, first stage: each region component's convex hull
       ++widened_;
+      // Per component (outer boundary), not one hull of everything: a face may hold separate parts far
+      // apart (landings below a rim and slides near the bottom), whose common hull would fill the gap.
+      std::vector<PolygonWithHoles2> components;
+      r_.faces[fi].region.polygons_with_holes(std::back_inserter(components));
+      std::vector<Polygon2> hulls;
+      for (const PolygonWithHoles2& c : components) {
+        const Points2 hull =
+            convex_hull(Points2(c.outer_boundary().vertices_begin(), c.outer_boundary().vertices_end()));
+        if (hull.size() >= 3) hulls.push_back(to_polygon(hull));
+      }
+      PolygonSet2 filled;
+      if (!hulls.empty()) filled.join(hulls.begin(), hulls.end());
+      if (!filled.is_empty()) add_reached_region(fi, filled);
+    } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole face (a superset)
       // The velocity model bounds every point of the motion by the reach ball: the face's part inside it.
       const Points2 whole =
           model_ == SpringModel::kVelocity ? velocity_reach_section(r_, fi, vm_) : r_.face_polygon[fi];
@@ -171,8 +234,13 @@ class SpringProjector {
     if (fresh < 0) return;
     if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
       for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
-    if (fresh > 0 && ++edge_growths_[ei] == kSpringWideningRounds) {  // widening: the whole edge
+    const int rounds = fresh > 0 ? grew_this_round(edge_growths_, edge_growth_step_, ei) : -1;
+    // Widening, first stage: the hull [min t0, max t1] of what the edge holds.
+    if (rounds == kSpringWideningRounds) {
       ++widened_;
+      const std::vector<EdgeInterval>& held = r_.edges[ei];
+      if (!held.empty()) add_interval(ei, held.front().t0, held.back().t1);
+    } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole edge
       if (model_ != SpringModel::kVelocity) {
         add_interval(ei, 0, 1);
       } else {  // the part within the reach ball: |a + t d − p| <= reach, rounded outward
@@ -621,7 +689,8 @@ class SpringProjector {
   std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
   std::vector<char> pend_vertex_;
-  std::vector<int> face_growths_, edge_growths_;  // growth counts for widening
+  std::vector<int> face_growths_, edge_growths_;  // growth counts for widening: fixpoint rounds that grew it
+  std::vector<int> face_growth_step_, edge_growth_step_;  // the work item (steps_) of the last counted growth
   int widened_ = 0;
   bool flew_ = false;
   int steps_ = 0;

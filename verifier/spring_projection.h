@@ -25,7 +25,7 @@ struct SpringProjection {
   bool may_not_terminate = false;  // no contact termination and no free-space rest
   bool fallback = false;           // the fixpoint cap was hit: every atom is reached (sound, uninformative)
   int steps = 0;                   // work items processed
-  int widened = 0;                 // atoms widened to the whole atom (kSpringWideningRounds)
+  int widened = 0;                 // atoms widened (hull stage, kSpringWideningRounds)
   // The robot may come to rest in free space: the ball of radius free_radius about free_center (= p) meets
   // free space and the motion may leave contact.
   bool free_termination = false;
@@ -34,10 +34,14 @@ struct SpringProjection {
 };
 
 // Widening (a sound acceleration of the fixpoint; docs/verifier.md "Widening"): once a face's reached region
-// or an edge's reached intervals have grown this many times, the whole face or edge is taken as reached.
-// Under Buckley's error model a robot that may leave a face can hop up to eps_t from every breakaway point
-// (the cylinder holds the ball about its source), so reached sets can creep across a face by ~eps_t per
-// round; the limit of that creep is (nearly) the whole face, and the rounds cost time ∝ face size / eps_t.
+// or an edge's reached intervals have grown in this many fixpoint rounds (work items; several additions in
+// one round count once), the convex hull of what it holds is taken as reached; after twice as many, the whole
+// face or edge (the velocity model: its part inside the reach ball). Any addition is sound (everything added
+// is propagated); the hull stage stops creep by slivers that fill in a region without extending it, and keeps
+// a far rim out of the set when no landing comes near it. Under Buckley's error model a robot that may leave
+// a face can hop up to eps_t from every breakaway point (the cylinder holds the ball about its source), so
+// reached sets can creep across a face by ~eps_t per round; the limit of that creep is (nearly) the whole
+// face, and the rounds cost time ∝ face size / eps_t.
 inline constexpr int kSpringWideningRounds = 24;
 
 // Work items processed before the "every atom is reached" fallback.

@@ -76,13 +76,32 @@ Points2 snap_outward(const Points2& poly, const FaceChart& chart, const Vec3& n,
   return convex_hull(snapped);
 }
 
+// Clips the double polygon `poly` (frame coordinates) to cs x + sn y <= bound.
+void clip_poly(std::vector<std::array<double, 2>>& poly, double cs, double sn, double bound) {
+  std::vector<std::array<double, 2>> out;
+  const std::size_t k = poly.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const auto& P = poly[i];
+    const auto& Q = poly[(i + 1) % k];
+    const double sp = cs * P[0] + sn * P[1] - bound, sq = cs * Q[0] + sn * Q[1] - bound;
+    if (sp <= 0) out.push_back(P);
+    if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) {
+      const double t = sp / (sp - sq);
+      out.push_back({P[0] + t * (Q[0] - P[0]), P[1] + t * (Q[1] - P[1])});
+    }
+  }
+  poly = std::move(out);
+}
+
 // Outer polygon (chart coordinates, clipped to the face) of the section of the intersection of convex sets
 // by face fi's plane n . y = c. For a unit in-plane direction v and any lambda, v . y = (v + lambda n) . y −
 // lambda c <= h(v + lambda n) − lambda c on the section, so every lambda gives a sound bound; a
 // golden-section search over the convex function of lambda makes it tight. The polygon is the intersection of
 // kVelocitySupportDirections such half-planes per set, each bound raised by a margin for the rounding of
-// doubles; kGoldenSteps steps of the search.
-Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Support>& sets) {
+// doubles; kGoldenSteps steps of the search. `in_plane`: every set's support is of the form g(v) + (w . n) c
+// for w = v + lambda n (a set given by its in-plane section), so lambda = 0 is as tight as any: no search.
+Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Support>& sets,
+                        bool in_plane = false) {
   const Face& face = g.cspace->faces()[fi];
   const Vec3& n = face.normal;
   const double c = face.offset, scale = g.cspace->scale();
@@ -100,6 +119,10 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
       const double cs = std::cos(th), sn = std::sin(th);
       const Vec3 v = cs * e1 + sn * e2;
       auto f = [&](double lambda) { return h(v + lambda * n) - lambda * c; };
+      if (in_plane) {  // h(v + lambda n) − lambda c does not depend on lambda: no search
+        clip_poly(poly, cs, sn, f(0) + margin * (1 + std::abs(f(0))));
+        continue;
+      }
       double a = -1e3, b = 1e3;
       const double r = (std::sqrt(5.0) - 1) / 2;
       double x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = f(x1), f2 = f(x2);
@@ -119,20 +142,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
         }
       }
       const double best = std::min(f1, f2);
-      const double bound = best + margin * (1 + std::abs(best));
-      std::vector<std::array<double, 2>> out;
-      const std::size_t k = poly.size();
-      for (std::size_t i = 0; i < k; ++i) {
-        const auto& P = poly[i];
-        const auto& Q = poly[(i + 1) % k];
-        const double sp = cs * P[0] + sn * P[1] - bound, sq = cs * Q[0] + sn * Q[1] - bound;
-        if (sp <= 0) out.push_back(P);
-        if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) {
-          const double t = sp / (sp - sq);
-          out.push_back({P[0] + t * (Q[0] - P[0]), P[1] + t * (Q[1] - P[1])});
-        }
-      }
-      poly = std::move(out);
+      clip_poly(poly, cs, sn, best + margin * (1 + std::abs(best)));
     }
   }
   if (poly.empty()) return {};
@@ -493,7 +503,7 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
   const double reach = std::max(d0, zone) * (1 + kSlack) + eps * (1 + kSlack) + margin;
   tube = clip(tube, minkowski_outward({c2}, disk_offsets(chart, face.normal, reach)));
   if (!tube.empty()) {
-    const Points2 bound = support_section(g, fi, {ball_support(m.p, m.reach)});
+    const Points2 bound = velocity_reach_section(g, fi, m);
     tube = bound.empty() ? bound : clip(tube, bound);
   }
   if (tube.size() < 3) {
@@ -559,7 +569,7 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
         }
         return best + w.dot(n) * c_plane;
       };
-      const Points2 bound = support_section(g, fi, {spiral});
+      const Points2 bound = support_section(g, fi, {spiral}, /*in_plane=*/true);
       if (bound.size() < 3) {  // a segment or point (on the face): the whole slide
         *lower = bound;
         return PolygonSet2();
@@ -597,13 +607,22 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
 }  // namespace
 
 Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const VelocitySpring& m) {
-  return support_section(g, fi, {ball_support(m.p, m.reach)});
+  // The ball meets the plane in the disk about p's projection of radius sqrt(reach^2 − h^2): its
+  // circumscribed polygon, rounded outward.
+  const Face& face = g.cspace->faces()[fi];
+  const double h = face.normal.dot(m.p) - face.offset, scale = g.cspace->scale();
+  if (std::abs(h) > m.reach * (1 + kSlack) + kSlack * scale) return {};
+  const double radius = std::sqrt(std::max(0.0, m.reach * m.reach - h * h)) * (1 + kSlack) + kSlack * scale;
+  const FaceChart& chart = g.charts[fi];
+  const Points2 disk = minkowski_outward({chart.project(Vec3(m.p - h * face.normal))},
+                                         disk_offsets(chart, face.normal, radius));
+  return clip(disk, g.face_polygon[fi]);
 }
 
 PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
                            Points2* lower) {
   lower->clear();
-  if (part.size() < 3) return slide_piece(g, fi, part, m, lower);
+  if (part.size() < 2) return slide_piece(g, fi, part, m, lower);  // segments are cut like polygons
   const Face& face = g.cspace->faces()[fi];
   const FaceChart& chart = g.charts[fi];
   const Vec3 center = m.p + (face.offset - face.normal.dot(m.p)) * face.normal;
@@ -643,7 +662,9 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
                    Points2 pts;
                    for (const Vec3& x : piece) pts.push_back(chart.project(x));
                    // the chart image of the double piece, rounded outward (covers the cut's rounding)
-                   pts = minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
+                   if (pts.size() >= 3)
+                     pts =
+                         minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
                    Points2 piece_lower;
                    PolygonSet2 region = slide_piece(g, fi, pts, m, &piece_lower);
                    if (!region.is_empty()) {

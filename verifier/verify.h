@@ -44,7 +44,7 @@ struct VerifyStep {
   bool may_not_terminate = false;  // no reached atom can stick
   bool fallback = false;           // the fixpoint fell back to "everything reached"
   int fixpoint_steps = 0;
-  int widened_atoms = 0;    // spring: atoms taken whole by widening (kSpringWideningRounds)
+  int widened_atoms = 0;    // spring: atoms widened (kSpringWideningRounds: hull, then whole)
   double reached_area = 0;  // area of the reached face regions (diagnostics)
   // Spring motions: the robot may come to rest in free space within free_radius of free_center (the
   // commanded position). Never inside a goal (goals are contact regions): the strategy fails there.

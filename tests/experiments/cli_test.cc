@@ -181,10 +181,33 @@ TEST(CmtVerify, HoleSpringStrategies) {
     if (piece["kind"] == "face")
       for (const auto& q : piece["polygon"]) top = top || std::abs(q[2].get<double>()) < 1e-9;
   EXPECT_TRUE(top);
-  // teach = (p2, p1) is not asserted: Buckley's reliable strategy (every rollout succeeds), but both spring
-  // models call it unreliable through their per-phase looseness (docs/verifier.md, "Why hole teach is still
-  // not verified"). Pinning that output would test the looseness, not the geometry.
   EXPECT_EQ(run("verify " + task("hole") + " --strategy nope --json").status, 2);
+}
+
+TEST(CmtVerify, HoleTeachReliableUnderTheVelocityModel) {
+  // Buckley §5.2's taught strategy teach = (p2, p1), expected reliable (issue: "hole teach reliable"). By the
+  // task's geometry (models/tasks/hole.yaml): p2 = (0,2,-1) lies 1 in behind the far hole wall y = 1, so the
+  // robot ends on that wall below its rim (the failure mode was the top face behind the hole, z = 0, y > 1,
+  // where p1 may stick); p1 = (0,0,-2.4) then takes it from the wall to the hole bottom z = -2, |x|, |y|
+  // <= 1. The velocity model (default; the impedance and admittance forms) keeps p* fixed during a motion.
+  const Result r = run("verify " + task("hole") + " --strategy teach --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto d = nlohmann::json::parse(r.out);
+  EXPECT_EQ(d["reliable"], true);
+  ASSERT_EQ(d["steps"].size(), 2u);
+  ASSERT_FALSE(d["steps"][0]["termination"].empty());
+  for (const auto& piece : d["steps"][0]["termination"])
+    for (const auto& q : piece["polygon"]) {
+      EXPECT_NEAR(q[1].get<double>(), 1.0, 1e-9) << piece["name"];  // on the far wall's plane
+      EXPECT_LT(q[2].get<double>(), 0.0) << piece["name"];          // below the rim
+    }
+  ASSERT_FALSE(d["steps"][1]["termination"].empty());
+  for (const auto& piece : d["steps"][1]["termination"])
+    for (const auto& q : piece["polygon"]) {
+      EXPECT_NEAR(q[2].get<double>(), -2.0, 1e-9) << piece["name"];
+      EXPECT_LE(std::abs(q[0].get<double>()), 1.0 + 1e-9);
+      EXPECT_LE(std::abs(q[1].get<double>()), 1.0 + 1e-9);
+    }
 }
 
 TEST(CmtVerify, SpringModelOption) {

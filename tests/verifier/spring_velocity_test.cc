@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/verifier/test_geometry.h"
+#include "verifier/spring.h"
 #include "verifier/spring_projection.h"
 #include "verifier/verify.h"
 
@@ -262,6 +263,35 @@ TEST(SpringVelocity, WideErrorsFlightsOffABlockStayInThePrediction) {
 }
 
 // The CLI selects the model; the verdict for the cube's single sticking motion is reliable under both.
+// Sticking at a vertex under the velocity model (SpringProjector::velocity_may_stick). The hole's corner v =
+// (-1,-1,0) (rim of the near and left walls) touches faces with normals +x, +y, +z; mu = .48 (phi = .4474),
+// theta_v = .25. Each face cone rotated by theta_v has half-angle .697; its ray (cos .697, −sin .697 / sqrt
+// 2, −sin .697 / sqrt 2) = (.767, −.455, −.455) about +x and the two like it about +y and +z sum to −.143
+// (1,1,1): the widened generators surround the origin, so spring_sticking_regions' weak region is everything.
+// For p = (0,2,-1) the robot may stick at v iff some −F in the sum FC of the (unwidened) face cones lies
+// within .25 of v − p* (p* within .2 of p: within .31 rad of v − p = (−1,−3,1)). w = (1,1,1)/sqrt 3 is .955
+// rad from each normal, less than pi/2 − .4474 = 1.123, so w . r >= 0 on FC; (−1,−3,1) is acos(−3 / (3.317
+// sqrt 3)) = 2.12 rad from w, i.e. .55 rad beyond that half-space's boundary, more than .31: no end at v. For
+// p =
+// (-2,-2,-1) (pulling into the corner: v − p = (1,1,1), the sum of the three normals) the robot may stay.
+TEST(SpringVelocity, VertexStickingUsesTheForceConeNotWidenedGenerators) {
+  auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole.yaml");
+  const CSpace& c = task->cspace;
+  int vertex = -1;
+  for (std::size_t vi = 0; vi < c.vertices().size(); ++vi)
+    if ((c.vertices()[vi].point - Vec3(-1, -1, 0)).norm() < 1e-12)
+      vertex = static_cast<int>(c.faces().size() + c.edges().size() + vi);
+  ASSERT_GE(vertex, 0);
+  EXPECT_TRUE(spring_sticking_regions(c, vertex, task->task.uncertainty).weak.contains(Vec3(0, 2, -1)));
+  ReachedSet start(c);
+  start.add_vertex(vertex);
+  const SpringProjection away = forward_project_spring(*task, start, Vec3(0, 2, -1), SpringModel::kVelocity);
+  EXPECT_FALSE(away.termination.has_vertex(vertex));
+  const SpringProjection into =
+      forward_project_spring(*task, start, Vec3(-2, -2, -1), SpringModel::kVelocity);
+  EXPECT_TRUE(into.termination.has_vertex(vertex));
+}
+
 TEST(SpringVelocity, CubeStickIsReliableUnderTheVelocityModel) {
   auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
   const VerifyResult r = verify_strategy(*task, *task->task.find_strategy("stick"), {SpringModel::kVelocity});
