@@ -607,16 +607,7 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
 }  // namespace
 
 Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const VelocitySpring& m) {
-  // The ball meets the plane in the disk about p's projection of radius sqrt(reach^2 − h^2): its
-  // circumscribed polygon, rounded outward.
-  const Face& face = g.cspace->faces()[fi];
-  const double h = face.normal.dot(m.p) - face.offset, scale = g.cspace->scale();
-  if (std::abs(h) > m.reach * (1 + kSlack) + kSlack * scale) return {};
-  const double radius = std::sqrt(std::max(0.0, m.reach * m.reach - h * h)) * (1 + kSlack) + kSlack * scale;
-  const FaceChart& chart = g.charts[fi];
-  const Points2 disk = minkowski_outward({chart.project(Vec3(m.p - h * face.normal))},
-                                         disk_offsets(chart, face.normal, radius));
-  return clip(disk, g.face_polygon[fi]);
+  return support_section(g, fi, {ball_support(m.p, m.reach)});
 }
 
 PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
