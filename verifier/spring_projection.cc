@@ -41,7 +41,8 @@ class SpringProjector {
         reached_(c_),
         r_(reached_.impl()) {
     if (model_ == SpringModel::kVelocity) {
-      vm_ = {p_, u_, velocity_reach_bound(c_, start, p_, u_)};
+      const double reach = velocity_reach_bound(c_, start, p_, u_);
+      vm_ = {p_, u_, reach, velocity_invariant_half_spaces(c_, start, p_, u_, reach)};
       slow_radius_ = slow_stop_radius(start, p_, u_, stop_relative_speed);
     }
     // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep
@@ -228,7 +229,27 @@ class SpringProjector {
     entered_lower_[fi].push_back(pts);
     pend_entry_lower_[fi].push_back(pts);
   }
+  // The velocity model's invariant half-spaces cut an edge interval (false: nothing of it is reachable).
+  bool within_bounds(int ei, double* t0, double* t1) const {
+    if (model_ != SpringModel::kVelocity) return true;
+    const Edge& e = c_.edges()[ei];
+    const double tol = kSpringRelativeSlack * c_.scale();
+    for (const HalfSpace& hs : vm_.bounds) {
+      const double sa = hs.normal.dot(e.a), sb = hs.normal.dot(e.b), lim = hs.offset + tol;
+      if (std::abs(sb - sa) <= tol) {
+        if (std::min(sa, sb) > lim) return false;
+        continue;
+      }
+      const double t = (lim - sa) / (sb - sa);
+      if (sb > sa)
+        *t1 = std::min(*t1, t + kEdgeParamSlack);
+      else
+        *t0 = std::max(*t0, t - kEdgeParamSlack);
+    }
+    return *t0 <= *t1;
+  }
   void add_interval(int ei, double t0, double t1) {
+    if (!within_bounds(ei, &t0, &t1)) return;
     std::vector<EdgeInterval> added;
     const double fresh = r_.add_interval(ei, t0, t1, &added);
     if (fresh < 0) return;

@@ -5,7 +5,10 @@
 // `free_termination` is set whenever it may come to rest in free space (near p). docs/verifier.md, "Spring".
 #pragma once
 
+#include <vector>
+
 #include "models/loaded_task.h"
+#include "verifier/polyhedron.h"
 #include "verifier/reached_set.h"
 
 namespace cmt {
@@ -69,6 +72,14 @@ double spring_spiral_deviation(double theta_v);
 // it is at most the distance from p* to the plane or line over cos(theta_v); + eps_s for p* − p.
 double velocity_reach_bound(const CSpace& cspace, const ReachedSet& start, const Vec3& p,
                             const Uncertainty& u);
+
+// Velocity model: half-spaces normal . x <= offset that hold every point of a motion from `start` toward p
+// whose points all lie within `reach` of p (velocity_reach_bound), for the 6 axis and 8 diagonal normals w:
+// the least level c >= max w . x over the start such that every admissible motion direction on the level (or
+// above it) has a non-positive component along w (docs/verifier.md, "Invariant half-spaces"). Directions
+// without such a level below the reach ball's extent are left out.
+std::vector<HalfSpace> velocity_invariant_half_spaces(const CSpace& cspace, const ReachedSet& start,
+                                                      const Vec3& p, const Uncertainty& u, double reach);
 
 // `stop_relative_speed` (kappa): see slow_stop_radius; used by the velocity model only (the via-point model
 // bounds the position form, whose stop rule is the AML force rule while via points are issued).

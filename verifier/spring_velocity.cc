@@ -28,6 +28,20 @@
 #include "verifier/internal/spring_flight.h"
 
 namespace cmt::fp {
+
+std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c) {
+  std::vector<Vec3> out;
+  const std::size_t k = poly.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec3& a = poly[i];
+    const Vec3& b = poly[(i + 1) % k];
+    const double sa = n.dot(a) - c, sb = n.dot(b) - c;
+    if (sa <= 0) out.push_back(a);
+    if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) out.push_back(a + (b - a) * (sa / (sa - sb)));
+  }
+  return out;
+}
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -45,20 +59,6 @@ constexpr int kGoldenSteps = 60;
 using Support = std::function<double(const Vec3&)>;
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
-
-// Keeps the part of the planar convex polygon `poly` (3-D points) where n . w <= c (Sutherland-Hodgman).
-std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c) {
-  std::vector<Vec3> out;
-  const std::size_t k = poly.size();
-  for (std::size_t i = 0; i < k; ++i) {
-    const Vec3& a = poly[i];
-    const Vec3& b = poly[(i + 1) % k];
-    const double sa = n.dot(a) - c, sb = n.dot(b) - c;
-    if (sa <= 0) out.push_back(a);
-    if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) out.push_back(a + (b - a) * (sa / (sa - sb)));
-  }
-  return out;
-}
 
 // A convex chart polygon grown by kVelocitySnap x scale and its vertices rounded to the grid of that
 // spacing, then hulled: it contains the polygon (each vertex moves by at most spacing / sqrt 2 < the growth),
@@ -100,8 +100,11 @@ void clip_poly(std::vector<std::array<double, 2>>& poly, double cs, double sn, d
 // kVelocitySupportDirections such half-planes per set, each bound raised by a margin for the rounding of
 // doubles; kGoldenSteps steps of the search. `in_plane`: every set's support is of the form g(v) + (w . n) c
 // for w = v + lambda n (a set given by its in-plane section), so lambda = 0 is as tight as any: no search.
+//
+// `cuts`: half-spaces that hold the whole motion (velocity_invariant_half_spaces); the polygon is also
+// clipped to their lines in the plane (exact lines in doubles, rounded outward with the rest).
 Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Support>& sets,
-                        bool in_plane = false) {
+                        bool in_plane = false, const std::vector<HalfSpace>* cuts = nullptr) {
   const Face& face = g.cspace->faces()[fi];
   const Vec3& n = face.normal;
   const double c = face.offset, scale = g.cspace->scale();
@@ -145,6 +148,18 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
       clip_poly(poly, cs, sn, best + margin * (1 + std::abs(best)));
     }
   }
+  if (cuts)
+    for (const HalfSpace& hs : *cuts) {
+      if (poly.empty()) break;
+      // w . (origin + x e1 + y e2) <= c in the plane's frame
+      const double a = hs.normal.dot(e1), b = hs.normal.dot(e2), rhs = hs.offset - hs.normal.dot(origin);
+      const double len = std::hypot(a, b);
+      if (len <= 1e-12) {  // w along n: the whole plane lies on one side
+        if (rhs < -margin) return {};
+        continue;
+      }
+      clip_poly(poly, a / len, b / len, rhs / len + margin);
+    }
   if (poly.empty()) return {};
   const FaceChart& chart = g.charts[fi];
   Points2 pts;
@@ -331,7 +346,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
     if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end())
       continue;
     if (touches_only_at_tips(g.cspace->faces()[fi], piece, tips)) continue;
-    const Points2 section = support_section(g, fi, bounds);
+    const Points2 section = support_section(g, fi, bounds, false, &m.bounds);
     if (section.size() < 3 && !section.empty()) {
       // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving
       // it is already there; edges and vertices seed their faces themselves, may_enter).
@@ -444,9 +459,9 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
 
 namespace {
 
-// The slide from one entry piece (file comment).
-PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
-                        Points2* lower) {
+// The slide from one entry piece (file comment), before the direction-cone rule (slide_piece).
+PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2& part,
+                               const VelocitySpring& m, Points2* lower) {
   const CSpace& c = *g.cspace;
   const Face& face = c.faces()[fi];
   const FaceChart& chart = g.charts[fi];
@@ -604,10 +619,118 @@ PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, 
   return out;
 }
 
+// Direction cones of a slide (docs/verifier.md, "Direction cones of slides"). A path whose velocity always
+// lies in a convex cone C stays in x0 + C. While the robot slides on face fi within a region K that bounds
+// the slide (the other bounds), its in-plane velocity at x is within beta(|x − p*'|) of the direction to p*',
+// so within angle(m, p' − x) + asin(eps_s / |x − p'|) + beta(|x − p'| − eps_s) of a unit in-plane direction m
+// (beta decreasing in d, |p*' − p'| <= eps_s). Over K, cut into pieces of small angular and radial extent
+// about p' (split_source), the largest such angle alpha(m) is bounded per piece (the angle to m is largest at
+// a vertex: its sublevel sets are convex cones about p'); if alpha(m) < pi/2 the slide lies in part + cone(m,
+// alpha(m)). Candidates m: the outward normals of the face's boundary edges (a robot that must cross an edge
+// leaves the face there: from a source on that edge the cone meets the face only in the source) and the
+// mean direction from the source toward p'.
+PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points2& part,
+                                 const VelocitySpring& m, PolygonSet2 region, Points2* lower) {
+  const CSpace& c = *g.cspace;
+  const Face& face = c.faces()[fi];
+  const FaceChart& chart = g.charts[fi];
+  const double eps = m.u.eps_s, scale = c.scale();
+  const double sin_v = std::sin(m.u.theta_v);
+  const double h = face.offset - face.normal.dot(m.p);
+  const Vec3 center = m.p + h * face.normal;  // p'
+  const double H = std::abs(h) + eps;
+  const double zone = H * std::tan(m.u.theta_v) * (1 + kSlack);
+  // K: the hull of the region (3-D doubles).
+  Points2 verts;
+  {
+    std::vector<PolygonWithHoles2> pwhs;
+    region.polygons_with_holes(std::back_inserter(pwhs));
+    for (const PolygonWithHoles2& pwh : pwhs)
+      verts.insert(verts.end(), pwh.outer_boundary().vertices_begin(), pwh.outer_boundary().vertices_end());
+  }
+  const Points2 hull = convex_hull(verts);
+  if (hull.size() < 3) return region;
+  std::vector<Vec3> k3;
+  for (const Point2& q : hull) k3.push_back(chart.lift_double(q));
+  // Candidate directions (unit, in the plane).
+  std::vector<Vec3> dirs;
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& q : face.polygon) centroid += q / static_cast<double>(face.polygon.size());
+  for (std::size_t i = 0; i < face.polygon.size(); ++i) {
+    const Vec3 e = face.polygon[(i + 1) % face.polygon.size()] - face.polygon[i];
+    Vec3 out = face.normal.cross(e);
+    if (out.norm() == 0) continue;
+    out.normalize();
+    if (out.dot(centroid - face.polygon[i]) > 0) out = -out;
+    dirs.push_back(out);
+  }
+  {
+    Vec3 mean = Vec3::Zero();
+    for (const Point2& q : part) {
+      Vec3 v = center - chart.lift_double(q);
+      v -= face.normal.dot(v) * face.normal;
+      if (v.norm() > 0) mean += v.normalized();
+    }
+    if (mean.norm() > 1e-9) dirs.push_back(mean.normalized());
+  }
+  std::vector<double> alpha(dirs.size(), 0.0);
+  auto beta = [&](double d) {
+    if (d <= zone) return kPi;
+    const double sb = sin_v * std::hypot(d, H) / d;
+    return sb >= 1 ? kPi : std::asin(sb) * (1 + kSlack) + kSlack;
+  };
+  split_source(k3, center, eps, std::max(eps, 1e-3 * scale), kSlack * scale,
+               [&](const std::vector<Vec3>& piece, double r_lower) {
+                 const double d_lo = r_lower - eps;
+                 const double add = r_lower <= eps
+                                        ? kPi
+                                        : beta(d_lo) + std::asin(std::min(1.0, eps / r_lower)) * (1 + kSlack);
+                 for (std::size_t j = 0; j < dirs.size(); ++j) {
+                   double worst = 0;
+                   for (const Vec3& x : piece) {
+                     Vec3 v = center - x;
+                     v -= face.normal.dot(v) * face.normal;
+                     worst = std::max(worst, v.norm() == 0 ? kPi : angle_between(dirs[j], v));
+                   }
+                   alpha[j] = std::max(alpha[j], worst * (1 + kSlack) + add);
+                 }
+               });
+  const Vec3 n = face.normal;
+  const double far = 2 * scale + 1;
+  bool cut_any = false;
+  for (std::size_t j = 0; j < dirs.size(); ++j) {
+    const double a = alpha[j] + kSlack;
+    if (a + kVelocityPointedMargin >= kPi / 2) continue;
+    const Vec3 side = n.cross(dirs[j]);
+    Points2 cone_pts;
+    for (const Point2& q : part) {
+      cone_pts.push_back(q);
+      for (const double sgn : {-1.0, 1.0})
+        cone_pts.push_back(q +
+                           chart.project_direction(far * (std::cos(a) * dirs[j] + sgn * std::sin(a) * side)));
+    }
+    const Points2 cone = convex_hull(cone_pts);
+    if (cone.size() < 3) continue;
+    region.intersection(to_polygon(cone));
+    cut_any = true;
+    if (region.is_empty()) break;
+  }
+  if (cut_any && region.is_empty()) *lower = part.size() < 3 ? part : Points2{};
+  return region;
+}
+
+// The slide from one entry piece: the bounds of slide_piece_bounds, then the direction cones.
+PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
+                        Points2* lower) {
+  PolygonSet2 out = slide_piece_bounds(g, fi, part, m, lower);
+  if (out.is_empty() || m.u.eps_s < 0) return out;
+  return direction_cone_bound(g, fi, part, m, std::move(out), lower);
+}
+
 }  // namespace
 
 Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const VelocitySpring& m) {
-  return support_section(g, fi, {ball_support(m.p, m.reach)});
+  return support_section(g, fi, {ball_support(m.p, m.reach)}, false, &m.bounds);
 }
 
 PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -184,30 +185,65 @@ TEST(CmtVerify, HoleSpringStrategies) {
   EXPECT_EQ(run("verify " + task("hole") + " --strategy nope --json").status, 2);
 }
 
+// A reliable two-motion verdict of `cmt verify --json` whose every termination vertex of motion k passes
+// check_k(x, y, z) (the checks say where by the task's geometry).
+using EndCheck = std::function<void(double, double, double)>;
+void expect_reliable_two_motions(const std::string& args, const EndCheck& first, const EndCheck& second) {
+  const Result r = run("verify " + args + " --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto d = nlohmann::json::parse(r.out);
+  EXPECT_EQ(d["reliable"], true);
+  ASSERT_EQ(d["steps"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const auto& termination = d["steps"][k]["termination"];
+    ASSERT_FALSE(termination.empty()) << k;
+    for (const auto& piece : termination)
+      for (const auto& q : piece["polygon"]) {
+        SCOPED_TRACE(piece["name"].get<std::string>());
+        (k == 0 ? first : second)(q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+      }
+  }
+}
+
 TEST(CmtVerify, HoleTeachReliableUnderTheVelocityModel) {
   // Buckley §5.2's taught strategy teach = (p2, p1), expected reliable (issue: "hole teach reliable"). By the
   // task's geometry (models/tasks/hole.yaml): p2 = (0,2,-1) lies 1 in behind the far hole wall y = 1, so the
   // robot ends on that wall below its rim (the failure mode was the top face behind the hole, z = 0, y > 1,
   // where p1 may stick); p1 = (0,0,-2.4) then takes it from the wall to the hole bottom z = -2, |x|, |y|
   // <= 1. The velocity model (default; the impedance and admittance forms) keeps p* fixed during a motion.
-  const Result r = run("verify " + task("hole") + " --strategy teach --json");
-  ASSERT_EQ(r.status, 0) << r.out;
-  const auto d = nlohmann::json::parse(r.out);
-  EXPECT_EQ(d["reliable"], true);
-  ASSERT_EQ(d["steps"].size(), 2u);
-  ASSERT_FALSE(d["steps"][0]["termination"].empty());
-  for (const auto& piece : d["steps"][0]["termination"])
-    for (const auto& q : piece["polygon"]) {
-      EXPECT_NEAR(q[1].get<double>(), 1.0, 1e-9) << piece["name"];  // on the far wall's plane
-      EXPECT_LT(q[2].get<double>(), 0.0) << piece["name"];          // below the rim
-    }
-  ASSERT_FALSE(d["steps"][1]["termination"].empty());
-  for (const auto& piece : d["steps"][1]["termination"])
-    for (const auto& q : piece["polygon"]) {
-      EXPECT_NEAR(q[2].get<double>(), -2.0, 1e-9) << piece["name"];
-      EXPECT_LE(std::abs(q[0].get<double>()), 1.0 + 1e-9);
-      EXPECT_LE(std::abs(q[1].get<double>()), 1.0 + 1e-9);
-    }
+  expect_reliable_two_motions(
+      task("hole") + " --strategy teach",
+      [](double, double y, double z) {
+        EXPECT_NEAR(y, 1.0, 1e-9);  // on the far wall's plane
+        EXPECT_LT(z, 0.0);          // below the rim
+      },
+      [](double x, double y, double z) {
+        EXPECT_NEAR(z, -2.0, 1e-9);
+        EXPECT_LE(std::abs(x), 1.0 + 1e-9);
+        EXPECT_LE(std::abs(y), 1.0 + 1e-9);
+      });
+}
+
+TEST(CmtVerify, TslotInsertReliableUnderTheVelocityModel) {
+  // Buckley §1.1's T-slot (double hole), strategy insert = (m1, m2), expected reliable (issue: "tslot
+  // 2-motion strategy reliable"). By the task's geometry (models/tasks/tslot.yaml): m1 = (0,2,-1) is hole p2,
+  // 1 in behind the first hole's far wall y = 1, so the T ends on that wall below its rim (z < 0); m2 =
+  // (0,4.5,-6) lies 1.5 beyond the goal face y = 3 and 1 below the second hole's floor z = -5, so the T
+  // slides down the wall, passes under the lips and ends on the goal face (x in [-1,1], z in [-5,-2]) or its
+  // edges. The invariant half-spaces (m1 never rises above the start's top, m2 never above m1's ends) and the
+  // direction cones of slides (a robot on the top at the rim leaves into the hole) are what make it so.
+  expect_reliable_two_motions(
+      task("tslot") + " --strategy insert",
+      [](double, double y, double z) {
+        EXPECT_NEAR(y, 1.0, 1e-9);
+        EXPECT_LT(z, 0.0);
+      },
+      [](double x, double y, double z) {
+        EXPECT_NEAR(y, 3.0, 1e-9);  // the goal face's plane
+        EXPECT_LE(std::abs(x), 1.0 + 1e-9);
+        EXPECT_GE(z, -5.0 - 1e-9);
+        EXPECT_LE(z, -2.0 + 1e-9);
+      });
 }
 
 TEST(CmtVerify, SpringModelOption) {

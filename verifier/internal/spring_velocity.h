@@ -32,11 +32,16 @@ inline constexpr int kVelocityMaxPieces = 64;
 // polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
 inline constexpr int kVelocitySupportDirections = 32;
 
+// Keeps the part of the planar convex polygon `poly` (3-D points) where n . x <= c (Sutherland-Hodgman, in
+// doubles).
+std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c);
+
 // What one velocity-form spring motion shares across its flights and slides.
 struct VelocitySpring {
   Vec3 p;            // commanded position
   Uncertainty u;     // theta_v (possibly widened, experiments/verifier_model.h) and eps_s are used
   double reach = 0;  // every point of the motion lies within this distance of p (velocity_reach_bound)
+  std::vector<HalfSpace> bounds;  // every point of the motion lies in these (velocity_invariant_half_spaces)
 };
 
 // The part of face fi within m.reach of p (outer polygon; empty if none): what widening may take.
