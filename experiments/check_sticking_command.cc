@@ -54,7 +54,10 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
     else
       std::cout << task->task.name << ": " << r.trials << " trials, " << r.disagreements
                 << " disagreements (must " << r.must << ", may " << r.may << " of which " << r.may_stuck
-                << " stuck, never " << r.never << ")\n";
+                << " stuck, never " << r.never << ")"
+                << (r.unstable > 0 ? ", " + std::to_string(r.unstable) + " unstable (not classified)"
+                                   : std::string())
+                << "\n";
     state.exit_status = r.disagreements == 0 ? kExitSuccess : kExitFailureFound;
   });
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "controllers/random.h"
@@ -24,6 +25,10 @@ struct Trial {
   bool stuck = false;
   double speed = 0;   // observed speed / commanded speed over the measuring window
   double travel = 0;  // distance from the start over the whole drive / drive time, / commanded speed
+  // The simulation became unstable (RolloutRunner::drive threw): the trial is not classified (its "stuck"
+  // would be meaningless) but counted and listed, like the rollouts' unstable outcomes.
+  bool unstable = false;
+  std::string failure;
 };
 
 // A unit vector at angle `angle` from `axis`, in a direction set by `azimuth`.
@@ -80,13 +85,19 @@ void drive_trial(RolloutRunner& runner, Trial& t) {
   m.target = t.actual;
   Vec3 at_half = Vec3::Zero(), at_end = t.point;
   bool have_half = false;
-  runner.drive(t.point, m, kCheckDriveSeconds, [&](const StepState& s) {
-    if (!have_half && s.time >= kCheckDriveSeconds / 2) {
-      at_half = s.position;
-      have_half = true;
-    }
-    at_end = s.position;
-  });
+  try {
+    runner.drive(t.point, m, kCheckDriveSeconds, [&](const StepState& s) {
+      if (!have_half && s.time >= kCheckDriveSeconds / 2) {
+        at_half = s.position;
+        have_half = true;
+      }
+      at_end = s.position;
+    });
+  } catch (const std::runtime_error& e) {  // an unstable simulation must not end the process
+    t.unstable = true;
+    t.failure = e.what();
+    return;
+  }
   (void)have_half;
   t.speed = (at_end - at_half).norm() / (kCheckDriveSeconds / 2);
   t.travel = (at_end - t.point).norm() / kCheckDriveSeconds;
@@ -117,6 +128,7 @@ StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n
       RolloutRunner runner(scene);
       for (int i = k; i < n; i += threads) {
         drive_trial(runner, trials[i]);
+        if (trials[i].unstable) continue;
         trials[i].speed /= command_speed;
         trials[i].travel /= command_speed;
         // Stuck: still in the window, and it never went anywhere (a robot that slid to the end of its atom
@@ -131,6 +143,17 @@ StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n
   const CSpace& c = task->cspace;
   for (int i = 0; i < n; ++i) {
     const Trial& t = trials[i];
+    if (t.unstable) {
+      ++r.unstable;
+      if (r.unstable_trials.size() < 20)
+        r.unstable_trials.push_back({{"trial", i},
+                                     {"atom", t.atom},
+                                     {"name", c.atom_name(t.atom)},
+                                     {"point", {t.point.x(), t.point.y(), t.point.z()}},
+                                     {"actual", {t.actual.x(), t.actual.y(), t.actual.z()}},
+                                     {"failure", t.failure}});
+      continue;
+    }
     const bool wrong = (t.cls == StickClass::kMust && !t.stuck) || (t.cls == StickClass::kNever && t.stuck);
     r.must += t.cls == StickClass::kMust;
     r.may += t.cls == StickClass::kMay;
@@ -153,6 +176,7 @@ StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n
   }
   for (int i = 0; i < n; ++i) {
     const Trial& t = trials[i];
+    if (t.unstable) continue;
     Vec3 inward = Vec3::Zero();
     double mu = 0;
     const std::vector<int> faces = atom_faces(c, t.atom);
@@ -191,6 +215,8 @@ nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckRe
           {"classes", {{"must", r.must}, {"may", r.may}, {"never", r.never}}},
           {"may_stick_fraction", may_fraction},
           {"disagreeing_trials", r.worst},
+          {"unstable", r.unstable},
+          {"unstable_trials", r.unstable_trials},
           {"records", records},
           {"seconds", r.seconds}};
 }

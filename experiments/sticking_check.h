@@ -44,12 +44,15 @@ struct StickingCheckResult {
   int must = 0, may = 0, never = 0;
   int may_stuck = 0;                               // may-stick cases that stuck
   nlohmann::json worst = nlohmann::json::array();  // the disagreeing trials (first 20)
-  std::vector<StickingTrialRecord> records;        // every trial, in trial order
+  std::vector<StickingTrialRecord> records;        // every classified trial, in trial order
+  int unstable = 0;  // trials whose simulation became unstable: not classified (not in must/may/never)
+  nlohmann::json unstable_trials = nlohmann::json::array();  // the first 20, with the failure message
   double seconds = 0;
 };
 
 // {"trials", "disagreements", "classes": {must, may, never}, "may_stick_fraction", "disagreeing_trials",
-//  "records": [{atom, kind, class, command_angle, phi, stuck, speed}], "seconds"}
+//  "unstable", "unstable_trials", "records": [{atom, kind, class, command_angle, phi, stuck, speed}],
+//  "seconds"}
 nlohmann::json sticking_check_json(const LoadedTask& task, const StickingCheckResult& result);
 
 // Which atoms the trials are drawn from.

@@ -53,7 +53,10 @@ void print_summary(const ValidationResult& r) {
     std::cout << "  counterexample (" << r.counterexample->how << "): " << r.counterexample->replay << "\n";
   if (r.sticking)
     std::cout << "  sticking: " << r.sticking->trials << " trials, " << r.sticking->disagreements
-              << " disagreements\n";
+              << " disagreements"
+              << (r.sticking->unstable > 0 ? ", " + std::to_string(r.sticking->unstable) + " unstable"
+                                           : std::string())
+              << "\n";
 }
 
 }  // namespace

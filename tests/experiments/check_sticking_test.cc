@@ -6,6 +6,7 @@
 // where Coulomb friction holds it: docs/rollouts.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -33,6 +34,29 @@ TEST(CheckSticking, EveryAtomKindAgreesWithPhysicsInTheCalibratedScene) {
     EXPECT_EQ(j["disagreements"], 0) << name << ": " << j["disagreeing_trials"].dump();
     EXPECT_GT(j["classes"]["must"].get<int>(), 100) << name;
     EXPECT_GT(j["classes"]["never"].get<int>(), 100) << name;
+  }
+}
+
+// A trial whose simulation becomes unstable is counted and listed, not classified, and does not end the
+// process. peg_in_hole_real (the hole scaled by 1/40), seed 1: 4 of 400 trials at the edge e9 exceed the
+// penetration tolerance (.03-.07 in against .0044 in); before 2026-11-25 the first of them aborted
+// `cmt check-sticking` and `cmt validate --sticking-trials` (an exception escaping a worker thread).
+TEST(CheckSticking, UnstableTrialsAreCountedNotFatal) {
+  for (const std::string threads : {"1", "2"}) {
+    int status = -1;
+    const auto j = run_json(
+        "check-sticking " + task("peg_in_hole_real") + " -n 400 --seed 1 --threads " + threads, &status);
+    EXPECT_EQ(status, 0) << j.dump();
+    EXPECT_EQ(j["trials"], 400);
+    const int unstable = j["unstable"].get<int>();
+    EXPECT_GE(unstable, 1);
+    EXPECT_EQ(j["classes"]["must"].get<int>() + j["classes"]["may"].get<int>() +
+                  j["classes"]["never"].get<int>() + unstable,
+              400);
+    ASSERT_EQ(j["unstable_trials"].size(), static_cast<std::size_t>(std::min(unstable, 20)));
+    for (const auto& t : j["unstable_trials"])
+      EXPECT_NE(t["failure"].get<std::string>().find("unstable simulation"), std::string::npos);
+    EXPECT_EQ(j["disagreements"], 0) << j["disagreeing_trials"].dump();
   }
 }
 
