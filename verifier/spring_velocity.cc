@@ -711,6 +711,10 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
     }
     const Points2 cone = convex_hull(cone_pts);
     if (cone.size() < 3) continue;
+    // Nothing to cut when the region's hull already lies in the (convex) cone: exact tests, no Boolean.
+    bool inside = true;
+    for (const Point2& q : hull) inside = inside && inside_closed(cone, q);
+    if (inside) continue;
     region.intersection(to_polygon(cone));
     cut_any = true;
     if (region.is_empty()) break;
