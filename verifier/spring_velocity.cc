@@ -29,6 +29,8 @@
 
 namespace cmt::fp {
 
+double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+
 std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c) {
   std::vector<Vec3> out;
   const std::size_t k = poly.size();
@@ -57,8 +59,6 @@ constexpr int kGoldenSteps = 60;
 
 // The support function w -> max { y . w : y in the set } of a convex set (w need not be a unit vector).
 using Support = std::function<double(const Vec3&)>;
-
-double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 
 // A convex chart polygon grown by kVelocitySnap x scale and its vertices rounded to the grid of that
 // spacing, then hulled: it contains the polygon (each vertex moves by at most spacing / sqrt 2 < the growth),
@@ -459,6 +459,26 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
 
 namespace {
 
+// The plane of a slide on a face (docs/verifier.md "Velocity-form spring model", fact 3): p' (p projected on
+// the plane), H >= |h*| (the depth of p* below it) and the zone radius H tan(theta_v) within which the
+// in-plane direction is arbitrary; outside it the in-plane velocity lies within beta(d) of the direction to
+// p*', sin beta(d) = sin(theta_v) sqrt(d^2 + H^2) / d (no bound where that reaches 1).
+struct SlidePlane {
+  Vec3 center;
+  double H = 0, zone = 0, sin_v = 0;
+  double sin_beta(double d) const { return sin_v * std::hypot(d, H) / d; }
+};
+
+SlidePlane slide_plane(const Face& face, const VelocitySpring& m) {
+  const double h = face.offset - face.normal.dot(m.p);
+  SlidePlane out;
+  out.center = m.p + h * face.normal;
+  out.H = std::abs(h) + m.u.eps_s;
+  out.zone = out.H * std::tan(m.u.theta_v) * (1 + kSlack);
+  out.sin_v = std::sin(m.u.theta_v);
+  return out;
+}
+
 // The slide from one entry piece (file comment), before the direction-cone rule (slide_piece).
 PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2& part,
                                const VelocitySpring& m, Points2* lower) {
@@ -466,12 +486,10 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
   const Face& face = c.faces()[fi];
   const FaceChart& chart = g.charts[fi];
   const double eps = m.u.eps_s, scale = c.scale();
-  const double sin_v = std::sin(m.u.theta_v);
   const double margin = kSlack * scale;
-  const double h = face.offset - face.normal.dot(m.p);
-  const Vec3 center = m.p + h * face.normal;                     // p'
-  const double H = std::abs(h) + eps;                            // >= |h*|
-  const double zone = H * std::tan(m.u.theta_v) * (1 + kSlack);  // beta(d) = pi/2 for d <= h* tan(theta_v)
+  const SlidePlane plane = slide_plane(face, m);
+  const Vec3& center = plane.center;  // p'
+  const double zone = plane.zone;     // beta(d) = pi/2 for d <= h* tan(theta_v)
   lower->clear();
   std::vector<Vec3> in_plane;  // entries − p', in the plane
   double dmax = 0;
@@ -488,7 +506,7 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
   const double d0 = dmax + eps;  // >= |e − p*'|
   // tan(beta(s)) / s, decreasing in s for s > zone.
   auto integrand = [&](double s) {
-    const double sb = std::min(1.0, sin_v * std::hypot(s, H) / s);
+    const double sb = std::min(1.0, plane.sin_beta(s));
     return sb >= 1 ? std::numeric_limits<double>::infinity() : std::tan(std::asin(sb)) / s;
   };
   // L(d0) from upper sums of Psi on a grid: on each cell d sin Psi(d) <= d_hi sin(min(Psi(d_lo), pi/2)).
@@ -547,7 +565,7 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
     for (int k = 0; k < kFloors; ++k) {
       const double t = static_cast<double>(k) / kFloors;
       const double d_f = zone * (1 + 1e-3) + (d0 - zone) * t * t;
-      const double sb = sin_v * std::hypot(d_f, H) / d_f;
+      const double sb = plane.sin_beta(d_f);
       if (d_f <= 0 || sb >= std::sin(kPi / 2 - kVelocityPointedMargin)) continue;
       floors.push_back({d_f, std::asin(sb) * (1 + kSlack) + kSlack});
     }
@@ -596,7 +614,7 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
   }
   // Forward wedge ∪ the disk d <= d_w (about p*', so within d_w + eps of p').
   const double d_w = std::max(0.5 * dmin, 1.5 * zone);
-  const double beta_w = std::asin(std::min(1.0, sin_v * std::hypot(d_w, H) / d_w)) * (1 + kSlack) + kSlack;
+  const double beta_w = std::asin(std::min(1.0, plane.sin_beta(d_w))) * (1 + kSlack) + kSlack;
   const double half = beta_w + spread * (1 + kSlack) + shift;
   if (half + kVelocityPointedMargin >= kPi / 2) return out;
   const double far = 2 * scale + 1;
@@ -635,11 +653,8 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
   const Face& face = c.faces()[fi];
   const FaceChart& chart = g.charts[fi];
   const double eps = m.u.eps_s, scale = c.scale();
-  const double sin_v = std::sin(m.u.theta_v);
-  const double h = face.offset - face.normal.dot(m.p);
-  const Vec3 center = m.p + h * face.normal;  // p'
-  const double H = std::abs(h) + eps;
-  const double zone = H * std::tan(m.u.theta_v) * (1 + kSlack);
+  const SlidePlane plane = slide_plane(face, m);
+  const Vec3& center = plane.center;  // p'
   // K: the hull of the region (3-D doubles).
   Points2 verts;
   {
@@ -675,8 +690,8 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
   }
   std::vector<double> alpha(dirs.size(), 0.0);
   auto beta = [&](double d) {
-    if (d <= zone) return kPi;
-    const double sb = sin_v * std::hypot(d, H) / d;
+    if (d <= plane.zone) return kPi;
+    const double sb = plane.sin_beta(d);
     return sb >= 1 ? kPi : std::asin(sb) * (1 + kSlack) + kSlack;
   };
   split_source(k3, center, eps, std::max(eps, 1e-3 * scale), kSlack * scale,
@@ -727,7 +742,7 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
 PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
                         Points2* lower) {
   PolygonSet2 out = slide_piece_bounds(g, fi, part, m, lower);
-  if (out.is_empty() || m.u.eps_s < 0) return out;
+  if (out.is_empty()) return out;
   return direction_cone_bound(g, fi, part, m, std::move(out), lower);
 }
 

@@ -17,7 +17,6 @@
 // alpha}, alpha < pi/2, are convex cones about p), and |x − p| >= w . (x − p) >= c0 − w . p on the region.
 // Free points of the region lie in the reach ball, where angle(w, x − p) <= acos((c0 − w . p) / reach).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -36,8 +35,6 @@ constexpr double kInvariantSlab = 1e-6;
 // Relative slack on levels computed in floating point.
 constexpr double kInvariantSlack = 1e-9;
 
-double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
-
 struct Test {
   const CSpace& c;
   Vec3 p;
@@ -47,7 +44,7 @@ struct Test {
   bool never_along(const Vec3& u, const std::vector<Vec3>& pts, double d_min) const {
     const double limit = kPi / 2 - theta - std::asin(std::min(1.0, eps / d_min)) - kInvariantAngleMargin;
     for (const Vec3& x : pts)
-      if (angle_between(u, x - p) > limit) return false;
+      if (fp::angle_between(u, x - p) > limit) return false;
     return true;
   }
 

@@ -32,6 +32,9 @@ inline constexpr int kVelocityMaxPieces = 64;
 // polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
 inline constexpr int kVelocitySupportDirections = 32;
 
+// The angle between two vectors (atan2 of |a x b| and a . b: accurate near 0 and pi).
+double angle_between(const Vec3& a, const Vec3& b);
+
 // Keeps the part of the planar convex polygon `poly` (3-D points) where n . x <= c (Sutherland-Hodgman, in
 // doubles).
 std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c);
