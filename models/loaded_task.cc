@@ -4,6 +4,7 @@
 
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "models/task_transform.h"
 
 namespace cmt {
 namespace {
@@ -50,6 +51,8 @@ std::vector<Vec3> region_samples(const Region& region, int per_side) {
   }
   return out;
 }
+
+std::shared_ptr<const LoadedTask> load_task_from_task(Task task) { return finish(std::move(task)); }
 
 std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path) {
   return finish(parse_task_file(path));

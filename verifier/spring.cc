@@ -8,6 +8,7 @@
 #include "models/friction_cone.h"
 #include "verifier/atom_cone.h"
 #include "verifier/convex_polygon.h"
+#include "verifier/unique_stick.h"
 
 namespace cmt {
 namespace {
@@ -59,6 +60,50 @@ Polyhedron face_weak_concave(const Face& face, double psi, double eps_s) {
   return keep_out;
 }
 
+// x + (C ⊖ ball(eps_s)) for C = cone(a, alpha): the apex moved eps_s / sin(alpha) along a, and the cone
+// taken from inside (kDiskPolygonSides generators on its rim; the chords lie inside the circle).
+void add_eroded_cone(const Vec3& x, const CircularCone& cone, double eps_s, Polyhedron* out) {
+  const Vec3 a = cone.axis.normalized();
+  const Vec3 apex = x + a * (eps_s / std::sin(cone.half_angle));
+  if (cone.half_angle >= kHalfPi) {  // a half-space: a . (p − apex) >= 0
+    out->halfspaces.push_back({-a, -a.dot(apex)});
+    return;
+  }
+  Vec3 e1, e2;
+  face_frame(a, &e1, &e2);
+  auto rim = [&](int k) {
+    const double t = 2 * std::numbers::pi * k / kDiskPolygonSides;
+    return Vec3(std::cos(cone.half_angle) * a +
+                std::sin(cone.half_angle) * (std::cos(t) * e1 + std::sin(t) * e2));
+  };
+  for (int k = 0; k < kDiskPolygonSides; ++k) {
+    Vec3 m = rim(k).cross(rim(k + 1)).normalized();
+    if (m.dot(a) > 0) m = -m;  // outward
+    out->halfspaces.push_back({m, m.dot(apex)});
+  }
+}
+
+// Strong region of an edge or vertex: commanded positions p such that, wherever on the atom the robot is (x
+// ranges over the atom's end points; the sets are convex, so the whole segment follows) and whatever the
+// sensing error (p* in ball(p, eps_s)) and velocity error (theta_v), the force direction p* − x keeps
+// sticking the only Coulomb solution: a union over UniqueStick::must_cones alternatives of the intersection,
+// over x and the alternative's cones C, of x + (C ⊖ ball(eps_s)). Buckley's summed cone of narrowed face
+// cones is not used: inside it, sliding off onto a face can also be a Coulomb solution (a convex block
+// corner with the pull along the diagonal into the block: tangential / normal = sqrt 2 > mu on the top face).
+std::vector<Polyhedron> edge_vertex_strong(const CSpace& cspace, int atom_id, const std::vector<Vec3>& points,
+                                           const Uncertainty& u) {
+  std::vector<Polyhedron> out;
+  for (const std::vector<CircularCone>& cones : UniqueStick::for_atom(cspace, atom_id).must_cones(u.theta_v)) {
+    Polyhedron set;
+    set.kind = Polyhedron::Kind::kConvex;
+    for (const Vec3& x : points)
+      for (const CircularCone& c : cones) add_eroded_cone(x, c, u.eps_s, &set);
+    // Against rounding in the constructed normals: pull every plane in by a hair (kept sound).
+    out.push_back(set.offset(-1e-12 * cspace.scale()));
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* stick_class_name(StickClass c) {
@@ -108,48 +153,33 @@ SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id,
   if (kind == AtomKind::kFace) {
     const Face& f = cspace.faces()[atom_id];
     const double phi = cone.generators()[0].half_angle;
-    if (phi <= u.theta_v) {
-      out.strong = Polyhedron::nothing();
-    } else {
+    if (phi > u.theta_v) {
       const double depth = u.eps_s + (margin + u.eps_s) / std::tan(phi - u.theta_v);
-      out.strong.kind = Polyhedron::Kind::kConvex;
-      out.strong.halfspaces.push_back({f.normal, f.offset - depth});
+      Polyhedron strong;
+      strong.kind = Polyhedron::Kind::kConvex;
+      strong.halfspaces.push_back({f.normal, f.offset - depth});
       const std::size_t k = f.polygon.size();
       for (std::size_t i = 0; i < k; ++i) {
         const Vec3 edge = f.polygon[(i + 1) % k] - f.polygon[i];
         const Vec3 outward = edge.cross(f.normal).normalized();  // CCW about n: edge x n points out of F
-        out.strong.halfspaces.push_back({outward, outward.dot(f.polygon[i]) - margin});
+        strong.halfspaces.push_back({outward, outward.dot(f.polygon[i]) - margin});
       }
+      out.strong.push_back(std::move(strong));
     }
   } else {
-    const FrictionCone narrow = cone.narrowed(u.theta_v);
-    if (narrow.empty() || narrow.generators().empty()) {
-      out.strong = Polyhedron::nothing();
-    } else {
-      // K_s ⊖ B ⊇ (C_1 ⊖ B) + C_2 + ...: shift by eps_s / sin(alpha) along the widest narrowed generator.
-      const CircularCone* widest = &narrow.generators()[0];
-      for (const CircularCone& g : narrow.generators())
-        if (g.half_angle > widest->half_angle) widest = &g;
-      if (widest->half_angle <= 0) {
-        out.strong = Polyhedron::nothing();
-      } else {
-        const Vec3 shift = -widest->axis * (u.eps_s / std::sin(widest->half_angle));
-        std::vector<Vec3> shifted;
-        for (const Vec3& p : points) shifted.push_back(p + shift);
-        out.strong = narrow.is_full()
-                         ? Polyhedron::everything()
-                         : hull_plus_cone(shifted, negated(narrow.extreme_rays(/*outer=*/false)));
-        // Against rounding in the constructed normals: pull every plane in by a hair (kept sound).
-        if (out.strong.kind == Polyhedron::Kind::kConvex)
-          out.strong = out.strong.offset(-1e-12 * cspace.scale());
-      }
-    }
+    out.strong = edge_vertex_strong(cspace, atom_id, points, u);
   }
   return out;
 }
 
+bool SpringStickingRegions::strongly_contains(const Vec3& p) const {
+  for (const Polyhedron& s : strong)
+    if (s.contains(p)) return true;
+  return false;
+}
+
 StickClass classify_spring(const SpringStickingRegions& regions, const Vec3& commanded) {
-  if (regions.strong.contains(commanded)) return StickClass::kMust;
+  if (regions.strongly_contains(commanded)) return StickClass::kMust;
   if (regions.weak.contains(commanded)) return StickClass::kMay;
   return StickClass::kNever;
 }

@@ -20,7 +20,8 @@ double eps_o(const Uncertainty& u);
 // commanded positions that are guaranteed to (an under-approximation).
 struct SpringStickingRegions {
   Polyhedron weak;
-  Polyhedron strong;
+  std::vector<Polyhedron> strong;  // a union of convex sets (none: nothing is guaranteed)
+  bool strongly_contains(const Vec3& p) const;
 };
 
 // Weak: atom ⊕ K_w ⊕ ball(eps_s), K_w = −(friction cone widened by theta_v), outer polyhedral cones. When a
@@ -30,9 +31,10 @@ struct SpringStickingRegions {
 // deep enough below it that, once the robot has slid to within eps_t of p', every sensed and velocity error
 // still sticks: depth >= eps_s + (eps_t + eps_s) / tan(phi − theta_v) (derived here; Buckley's construction
 // states only depth >= eps_s, which does not guarantee sticking when phi − theta_v is small). Empty when phi
-// <= theta_v. Strong, edge and vertex: the union over the atom's points x of x + (K_s ⊖ ball(eps_s)), K_s =
-// −(friction cone narrowed by theta_v), from inner cones; (C1 + C2) ⊖ B ⊇ (C1 ⊖ B) + C2 keeps it an
-// under-approximation.
+// <= theta_v. Strong, edge and vertex: positions from which the pull from every point x of the atom keeps
+// sticking the unique Coulomb solution under every sensing and velocity error (UniqueStick::must_cones
+// narrowed by theta_v, eroded by eps_s, from inner cones). Buckley's summed cone is not used for "must": at a
+// convex corner, sliding off onto a face is also a solution inside it.
 SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id, const Uncertainty& u);
 
 enum class StickClass { kMust, kMay, kNever };

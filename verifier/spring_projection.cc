@@ -97,7 +97,7 @@ class SpringProjector {
       // The velocity model also tests the force cone against the atom's cone directly (both are sound, so
       // both must allow sticking).
       weak_atom_.push_back(weak && (model_ != SpringModel::kVelocity || velocity_may_stick(id)));
-      strong_atom_.push_back(reg.strong.contains(p_));
+      strong_atom_.push_back(reg.strongly_contains(p_));
     }
     // The start: entries on faces, new intervals and vertices.
     const ReachedSet::Impl& s = start.impl();

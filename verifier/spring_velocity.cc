@@ -114,8 +114,16 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   Vec3 e1, e2;
   face_frame(n, &e1, &e2);
   const Vec3 origin = c * n;
-  const double big = 8 * scale + 1;
-  std::vector<std::array<double, 2>> poly = {{-big, -big}, {big, -big}, {big, big}, {-big, big}};
+  // The starting square holds the whole face (the section is clipped to the face at the end): centred on the
+  // face's vertex centroid, half-size above the scene's diameter (every face point lies within `scale` of
+  // it). Relative to the face, not to the world origin, so the section does not depend on where the task
+  // sits in the world or on its units.
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& q : face.polygon) centroid += q / static_cast<double>(face.polygon.size());
+  const double cx = (centroid - origin).dot(e1), cy = (centroid - origin).dot(e2);
+  const double big = 2 * scale;
+  std::vector<std::array<double, 2>> poly = {
+      {cx - big, cy - big}, {cx + big, cy - big}, {cx + big, cy + big}, {cx - big, cy + big}};
   for (const Support& h : sets) {
     for (int j = 0; j < kVelocitySupportDirections && !poly.empty(); ++j) {
       const double th = 2 * kPi * j / kVelocitySupportDirections;
@@ -617,12 +625,14 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
   const double beta_w = std::asin(std::min(1.0, plane.sin_beta(d_w))) * (1 + kSlack) + kSlack;
   const double half = beta_w + spread * (1 + kSlack) + shift;
   if (half + kVelocityPointedMargin >= kPi / 2) return out;
-  const double far = 2 * scale + 1;
+  // Rays with axis component 1 (as flight_cone's): the truncated wedge reaches `far` along the axis, past
+  // every face point (all lie within `scale` of the part), whatever the half-angle.
+  const double far = 2 * scale;
   Points2 wedge_pts;
   for (const Point2& q : part) {
     wedge_pts.push_back(q);
     for (const double sgn : {-1.0, 1.0}) {
-      const Vec3 dir = -(std::cos(half) * axis + sgn * std::sin(half) * axis_perp);
+      const Vec3 dir = -(axis + sgn * std::tan(half) * axis_perp);
       wedge_pts.push_back(q + chart.project_direction(far * dir));
     }
   }
@@ -711,7 +721,9 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
                  }
                });
   const Vec3 n = face.normal;
-  const double far = 2 * scale + 1;
+  // Rays with component 1 along m: the truncated cone reaches `far` along m, past every face point (all lie
+  // within `scale` of the part), whatever alpha(m) is.
+  const double far = 2 * scale;
   bool cut_any = false;
   for (std::size_t j = 0; j < dirs.size(); ++j) {
     const double a = alpha[j] + kSlack;
@@ -721,8 +733,7 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
     for (const Point2& q : part) {
       cone_pts.push_back(q);
       for (const double sgn : {-1.0, 1.0})
-        cone_pts.push_back(q +
-                           chart.project_direction(far * (std::cos(a) * dirs[j] + sgn * std::sin(a) * side)));
+        cone_pts.push_back(q + chart.project_direction(far * (dirs[j] + sgn * std::tan(a) * side)));
     }
     const Points2 cone = convex_hull(cone_pts);
     if (cone.size() < 3) continue;

@@ -9,6 +9,7 @@ namespace {
 
 // Two unit normals are perpendicular (box geometry); decided with a tolerance far below any physical angle.
 constexpr double kPerpendicularTolerance = 1e-9;
+constexpr double kHalfPi = 1.5707963267948966;
 
 double angle(const Vec3& a, const Vec3& b) {
   return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
@@ -43,10 +44,11 @@ UniqueStick UniqueStick::concave_edge(const Vec3& n1, double mu1, const Vec3& n2
   return u;
 }
 
-UniqueStick UniqueStick::corner(const Vec3& n1, const Vec3& n2, const Vec3& n3) {
+UniqueStick UniqueStick::corner(const Vec3& n1, const Vec3& n2, const Vec3& n3, std::vector<double> mus) {
   UniqueStick u;
   u.kind_ = Kind::kCorner;
   u.normals_ = {n1.normalized(), n2.normalized(), n3.normalized()};
+  u.mus_ = std::move(mus);
   return u;
 }
 
@@ -95,12 +97,64 @@ UniqueStick UniqueStick::for_atom(const CSpace& c, int atom_id) {
             for (const Vec3& p : F.polygon)
               concave = concave && G.normal.dot(p) - G.offset >= -1e-12 * c.scale();
           }
-        if (concave) return corner(normals[0], normals[1], normals[2]);
+        if (concave) return corner(normals[0], normals[1], normals[2], mus);
       }
       return intersection(normals, mus);
     }
   }
   return intersection(normals, mus);
+}
+
+std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) const {
+  std::vector<std::vector<CircularCone>> out;
+  // cone(axis, half) narrowed by `angle`; false when nothing is left.
+  auto narrowed = [angle](const Vec3& axis, double half, std::vector<CircularCone>* set) {
+    if (half - angle <= 0) return false;
+    set->push_back({axis.normalized(), std::min(half - angle, kHalfPi)});
+    return true;
+  };
+  // Two cones whose axes are further apart than their half-angles add up meet only at the apex: the
+  // alternative holds no direction and is left out.
+  auto add = [&out](std::vector<CircularCone> set, bool ok) {
+    for (std::size_t i = 0; ok && i < set.size(); ++i)
+      for (std::size_t j = i + 1; ok && j < set.size(); ++j)
+        ok = std::acos(std::clamp(set[i].axis.dot(set[j].axis), -1.0, 1.0)) < set[i].half_angle + set[j].half_angle;
+    if (ok) out.push_back(std::move(set));
+  };
+  auto face_alternatives = [&] {  // each face's own narrowed cone
+    for (std::size_t i = 0; i < normals_.size() && i < mus_.size(); ++i) {
+      std::vector<CircularCone> set;
+      add(set, narrowed(-normals_[i], std::atan(mus_[i]), &set));
+    }
+  };
+  switch (kind_) {
+    case Kind::kIntersection: {
+      std::vector<CircularCone> set;
+      bool ok = true;
+      for (std::size_t i = 0; i < normals_.size(); ++i) ok = ok && narrowed(-normals_[i], std::atan(mus_[i]), &set);
+      add(set, ok && !set.empty());
+      break;
+    }
+    case Kind::kCorner: {  // pressing into every face: f . n_k <= 0, each plane narrowed to cone(−n_k, pi/2 − angle)
+      std::vector<CircularCone> set;
+      bool ok = true;
+      for (const Vec3& n : normals_) ok = ok && narrowed(-n, kHalfPi, &set);
+      add(set, ok);
+      face_alternatives();
+      break;
+    }
+    case Kind::kConcaveEdge: {  // N1, N2 >= 0 and |t| <= mu1 N1 + mu2 N2: four planes f . w <= 0
+      const Vec3 &n1 = normals_[0], &n2 = normals_[1];
+      const Vec3 side = mus_[0] * n1 + mus_[1] * n2;
+      std::vector<CircularCone> set;
+      bool ok = true;
+      for (const Vec3& w : {n1, n2, Vec3(e_ + side), Vec3(side - e_)}) ok = ok && narrowed(-w, kHalfPi, &set);
+      add(set, ok);
+      face_alternatives();
+      break;
+    }
+  }
+  return out;
 }
 
 double UniqueStick::margin(const Vec3& force) const {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "models/cspace.h"
+#include "models/friction_cone.h"
 
 namespace cmt {
 
@@ -29,10 +30,20 @@ class UniqueStick {
   static UniqueStick for_atom(const CSpace& cspace, int atom_id);
   static UniqueStick face(const Vec3& normal, double mu);
   static UniqueStick concave_edge(const Vec3& n1, double mu1, const Vec3& n2, double mu2);
-  static UniqueStick corner(const Vec3& n1, const Vec3& n2, const Vec3& n3);
+  static UniqueStick corner(const Vec3& n1, const Vec3& n2, const Vec3& n3, std::vector<double> mus = {});
   static UniqueStick intersection(const std::vector<Vec3>& normals, const std::vector<double>& mus);
 
   double margin(const Vec3& force) const;
+
+  // Convex sets of force directions that keep sticking the only Coulomb solution under a direction error of
+  // `angle`: every direction within `angle` of a member lies in the unique-stick set. Returned as a union
+  // (outer list) of intersections of circular cones (inner lists); an alternative whose cone would narrow to
+  // nothing is left out. Faces, and atoms of the intersection kind: ∩ cone(−n_i, phi_i − angle). Perpendicular
+  // concave edges: the kinetic wedge (its four bounding planes, each narrowed to cone(−w, pi/2 − angle)), or
+  // either face's own narrowed cone (inside a face's cone neither that face nor the edge can slide: the other
+  // wall only adds normal force and friction against the sliding direction). Concave box corners: pressing
+  // into all three faces by at least `angle`, or any one face's narrowed cone (the same argument).
+  std::vector<std::vector<CircularCone>> must_cones(double angle) const;
 
  private:
   enum class Kind { kIntersection, kConcaveEdge, kCorner };

@@ -143,11 +143,54 @@ TEST_F(HoleBottom, ConvexRimEdge) {
   ASSERT_EQ(c.atom_kind(rim), AtomKind::kEdge);
   ASSERT_EQ(c.edges()[c.atom_index(rim)].shape, EdgeShape::kConvex);
   const auto r = spring_sticking_regions(c, rim, task_->task.uncertainty);
-  // Deep into the obstacle corner along −(1,0,1): inside the narrowed sum (margin ≥ phi − theta_v around each
-  // normal and the quarter-plane between them), well beyond the eps_s shift of 1.02: must.
-  EXPECT_EQ(classify_spring(r, Vec3(-1, 0, 0) - 5 * Vec3(1, 0, 1).normalized()), StickClass::kMust);
+  // Deep into the obstacle corner along −(1,0,1): inside the summed cone, so sticking may happen (may), but not
+  // must: the pull makes 45° with either face's inward normal, beyond phi = .4475, so sliding down the wall
+  // (or along the top, off the rim) is also a Coulomb solution.
+  EXPECT_EQ(classify_spring(r, Vec3(-1, 0, 0) - 5 * Vec3(1, 0, 1).normalized()), StickClass::kMay);
+  // Pulling almost straight down at the rim, a hair toward the wall: on the top face it would stick, but the
+  // wall's normal force is tiny, so sliding down the wall is also a solution. Only "inside every face's cone" is
+  // certain at a convex edge, and no direction is within phi − theta_v = .1975 of both −z and −x: may.
+  EXPECT_EQ(classify_spring(r, Vec3(-1.05, 0, -5)), StickClass::kMay);
   // Out in the free space above the hole (pulling up and into the hole): never.
   EXPECT_EQ(classify_spring(r, Vec3(0, 0, 2)), StickClass::kNever);
+}
+
+TEST_F(HoleBottom, ConcaveEdgeMustStickInsideOneFaceCone) {
+  // The bottom edge along y at x = -1: pulling straight down (p − x = (.3, ·, −8) from both ends y = ±1 after
+  // the 1.02 erosion shift along −z, angle atan(|(.3, 1)| / 7) = .149 < .1975) stays inside the floor's narrowed
+  // cone: the wall only adds normal force and friction against any sliding, so sticking is the only solution.
+  const CSpace& c = task_->cspace;
+  const int edge = c.nearest_atom(Vec3(-1, 0, -2), 1e-9);
+  ASSERT_EQ(c.atom_kind(edge), AtomKind::kEdge);
+  const auto r = spring_sticking_regions(c, edge, task_->task.uncertainty);
+  EXPECT_EQ(classify_spring(r, Vec3(-0.7, 0, -10)), StickClass::kMust);
+  // Pulling along the floor, away from the wall (p − x = (4, ·, −.5)): it slides off the edge; the ratio 8 of
+  // +x to −z is beyond any direction of the summed cone widened by theta_v (at most tan(.6975) = .84): never.
+  EXPECT_EQ(classify_spring(r, Vec3(3, 0, -2.5)), StickClass::kNever);
+}
+
+TEST(SpringConvexCorner, DiagonalPullIntoTheBlockIsNotMust) {
+  // A convex block corner (mu .48, theta_v .25, eps_s .2), the pull 1.5 in along the diagonal into the block:
+  // on the top face the pull's tangential/normal ratio is sqrt 2 > mu, so sliding onto the top (or a side) is a
+  // Coulomb solution too. Buckley's summed cone of the three narrowed face cones holds this direction, so the
+  // old strong region called it "must" and the projection stopped at the vertex.
+  const std::string yaml = R"(
+name: corner
+friction: 0.48
+uncertainty: {eps_s: 0.2, eps_p: 0.2, theta_v: 0.25, theta_f: 0.05}
+cspace:
+  - box: {min: [-2, -2, -2], max: [0, 0, 0]}
+bounds: {min: [-3, -3, -3], max: [2, 2, 2]}
+start: {point: [0, 0, 0]}
+goal: {point: [0, 0, 0]}
+)";
+  auto t = load_task_from_string(yaml, "corner.yaml");
+  const int corner = t->cspace.nearest_atom(Vec3(0, 0, 0), 1e-9);
+  ASSERT_EQ(t->cspace.atom_kind(corner), AtomKind::kVertex);
+  const auto r = spring_sticking_regions(t->cspace, corner, t->task.uncertainty);
+  const Vec3 target = -1.5 * Vec3(1, 1, 1).normalized();
+  EXPECT_EQ(classify_spring(r, target), StickClass::kMay);
+  EXPECT_TRUE(r.strong.empty());  // no direction lies within phi − theta_v of all three inward normals
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+// The random-task soundness campaign (property-based testing of the verifier against physics): a seeded
+// generator of small C-space scenes that nobody tuned the verifier for (a floor and 0-3 boxes, near or far from
+// the origin, in inches or millimetres; a start on a top face; one damper or spring motion; error bounds across
+// the documented ranges), each verified and checked by extreme-mode MuJoCo rollouts (cmt validate). A task
+// whose rollouts end outside the prediction, or fail under a "reliable" verdict, is a soundness bug: it is
+// minimized (parts dropped, the start reduced to a point while the bug stays) and saved with its replay
+// command. docs/validation.md, "Random-task soundness campaign".
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace cmt {
+
+// One generated task: its YAML text (a complete task file, strategy `s` of one motion `m`) and a one-line
+// description of how it was drawn.
+struct CampaignTask {
+  int index = 0;
+  std::string yaml;
+  std::string description;
+};
+
+// Task `index` of campaign `seed`: the same pair always gives the same text.
+CampaignTask generate_campaign_task(std::uint64_t seed, int index);
+
+struct CampaignOptions {
+  int tasks = 30;
+  std::uint64_t seed = 1;
+  int rollouts = 150;              // extreme-mode rollouts per task
+  int threads = 1;                 // rollout threads (results are identical for every count)
+  double verifier_budget = 120;    // s of wall clock per verification; a task over it is recorded, not scored
+  bool minimize = true;            // shrink each bug before saving it
+  std::filesystem::path out = "out/soundness-campaign";  // results.jsonl, bugs/
+};
+
+// The outcome of one task.
+struct CampaignRecord {
+  int index = 0;
+  std::string status;  // "sound", "bug", "invalid" (the generated task does not load), "timed-out"
+  std::string description, detail;
+  bool reliable = false;
+  int rollouts = 0, successes = 0, unstable = 0, ends = 0, outside = 0;
+  double soundness = 1, max_distance_outside = 0, verify_seconds = 0;
+  bool soundness_bug = false;  // verified reliable, a rollout failed
+  std::string saved, replay;   // for bugs: the saved (minimized) task file and the command that replays it
+};
+
+nlohmann::json campaign_record_json(const CampaignRecord& r);
+
+struct CampaignSummary {
+  int run = 0, resumed = 0, sound = 0, bugs = 0, invalid = 0, timed_out = 0, reliable = 0;
+  std::vector<CampaignRecord> bug_records;
+};
+
+// Runs tasks [0, options.tasks) of campaign options.seed, appending one JSON line per task to
+// options.out/results.jsonl as it finishes; tasks already recorded there for the same seed and rollout count
+// are not rerun (a killed campaign resumes where it stopped). `progress` is called after each task.
+CampaignSummary run_soundness_campaign(const CampaignOptions& options,
+                                       const std::function<void(const CampaignRecord&)>& progress = {});
+
+}  // namespace cmt

@@ -1,0 +1,103 @@
+#include "models/task_transform.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace cmt {
+namespace {
+
+bool signed_permutation(const Eigen::Matrix3d& r) {
+  for (int i = 0; i < 3; ++i) {
+    int nonzero = 0;
+    for (int j = 0; j < 3; ++j) {
+      if (r(i, j) == 0) continue;
+      if (std::abs(r(i, j)) != 1) return false;
+      ++nonzero;
+    }
+    if (nonzero != 1) return false;
+  }
+  return r.determinant() == 1;
+}
+
+AxisBox map_box(const AxisBox& b, const TaskTransform& m) {
+  const Vec3 a = m.point(b.min), c = m.point(b.max);
+  return {a.cwiseMin(c), a.cwiseMax(c)};
+}
+
+void map_part(ConvexPart& part, const TaskTransform& m) {
+  part.box = map_box(part.box, m);
+  for (Vec3& v : part.vertices) v = m.point(v);
+}
+
+void map_termination(MotionTermination& t, const TaskTransform& m) {
+  for (AxisBox& b : t.position) b = map_box(b, m);
+  for (ForceCone& f : t.force) f.direction = m.direction(f.direction);
+}
+
+void map_region(Region& r, const TaskTransform& m) {
+  for (Vec3& p : r.points) p = m.point(p);
+}
+
+}  // namespace
+
+TaskTransform TaskTransform::quarter_turns(int axis, int turns) {
+  TaskTransform t;
+  const int k = ((turns % 4) + 4) % 4;
+  Eigen::Matrix3d q = Eigen::Matrix3d::Zero();
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;  // the quarter turn maps e_a -> e_b, e_b -> -e_a
+  q(axis, axis) = 1;
+  q(b, a) = 1;
+  q(a, b) = -1;
+  for (int i = 0; i < k; ++i) t.rotation = q * t.rotation;
+  return t;
+}
+
+TaskTransform TaskTransform::change_units(LengthUnit from, LengthUnit to) {
+  TaskTransform t;
+  t.scale = meters_per_unit(from) / meters_per_unit(to);
+  t.units = to;
+  return t;
+}
+
+TaskTransform TaskTransform::after(const TaskTransform& first) const {
+  TaskTransform t;
+  t.rotation = rotation * first.rotation;
+  t.scale = scale * first.scale;
+  t.offset = point(first.offset);
+  t.units = units ? units : first.units;
+  return t;
+}
+
+Task transformed(const Task& task, const TaskTransform& m) {
+  if (!signed_permutation(m.rotation))
+    throw std::invalid_argument("task transform: the rotation must be a signed permutation with det +1");
+  if (!(m.scale > 0)) throw std::invalid_argument("task transform: the scale must be positive");
+  if (task.dimension == 2 && (m.rotation(1, 1) != 1 || m.offset.y() != 0))
+    throw std::invalid_argument("task transform: a planar task turns only about y and moves only in x and z");
+  Task out = task;
+  if (m.units) out.units = *m.units;
+  out.uncertainty.eps_s *= m.scale;
+  out.uncertainty.eps_p *= m.scale;
+  out.uncertainty.step *= m.scale;
+  for (auto* parts : {&out.robot, &out.environment, &out.cspace})
+    for (ConvexPart& p : *parts) map_part(p, m);
+  if (task.physical()) {  // the robot's parts are relative to its reference point: turned and scaled only
+    TaskTransform about_origin = m;
+    about_origin.offset = Vec3::Zero();
+    out.robot = task.robot;
+    for (ConvexPart& p : out.robot) map_part(p, about_origin);
+  }
+  if (out.bounds) *out.bounds = map_box(*out.bounds, m);
+  map_region(out.start, m);
+  for (Region& g : out.goal) map_region(g, m);
+  for (Motion& mo : out.motions) {
+    mo.target = mo.kind == Motion::Kind::kSpring ? m.point(mo.target) : m.direction(mo.target);
+    map_termination(mo.terminate, m);
+  }
+  for (Strategy& s : out.strategies)
+    for (StrategyNode& n : s.nodes)
+      for (StrategyBranch& b : n.branches) map_termination(b.when, m);
+  return out;
+}
+
+}  // namespace cmt
