@@ -1,11 +1,13 @@
 #include "experiments/verifier_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "experiments/task_overrides.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "sim/rollout.h"
 
 namespace cmt {
 
@@ -13,10 +15,20 @@ double sensed_force_extra_angle(double theta_f, double servo_ratio) {
   return std::asin(2 * servo_ratio / (1 + servo_ratio) * std::sin(theta_f / 2));
 }
 
+double rollout_contact_lift(const LoadedTask& task) {
+  const SimOptions sim;
+  const MjcfOptions& scene = sim.scene;
+  double mu_max = 0;
+  for (const Face& f : task.cspace.faces()) mu_max = std::max(mu_max, f.friction);
+  const double speed = std::max(sim.damper_speed_per_scale, sim.max_speed_per_scale) * task.cspace.scale();
+  return scene.robot_mass / scene.damping * mu_max * speed;
+}
+
 VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
                                   ControllerForm form) {
   VerifierModel m;
   m.task = task;
+  m.contact_lift = rollout_contact_lift(*task);
   m.form = form;
   m.task_theta_v = task->task.uncertainty.theta_v;
   m.theta_f = task->task.uncertainty.theta_f;
@@ -74,6 +86,7 @@ nlohmann::json verifier_model_json(const VerifierModel& m) {
           {"theta_v", m.theta_v},
           {"spring_model", spring_model_name(m.spring_model)},
           {"stop_relative_speed", m.stop_relative_speed},
+          {"contact_lift", m.contact_lift},
           {"reason", m.reason}};
 }
 

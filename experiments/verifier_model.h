@@ -49,6 +49,17 @@ namespace cmt {
 // direction error <= theta_f through gain ratio rho = b_s / b.
 double sensed_force_extra_angle(double theta_f, double servo_ratio = kAdmittanceServoRatio);
 
+// The contact lift of the rollouts' scene for a task (VerifyOptions::contact_lift, docs/verifier.md "Contact
+// lift"): MuJoCo's convex contact gives slip a separating normal velocity of up to mu x the slip speed
+// (docs/mujoco-scene.md "Sliding hops"); once the contact lets go, the first-order servo m xddot = −b (xdot −
+// v_c) takes the normal velocity w0 back toward the command's normal component v_n <= 0 (a command with v_n > 0
+// leaves the face anyway: a flight) with time constant m / b, so the robot rises at most (m / b) w0 <= (m / b)
+// mu_max V, V the fastest commanded speed (damper speed or spring top speed, SimOptions, a fraction of the
+// scene scale per second) and mu_max the largest friction coefficient of the task's faces. Impedance form;
+// the admittance form's force feedback adds to the rebound (its measured hops stay below the bound, the docs
+// say by how much).
+double rollout_contact_lift(const LoadedTask& task);
+
 // What the verifier runs on for a controller form.
 struct VerifierModel {
   std::shared_ptr<const LoadedTask> task;  // the task itself, or a copy with uncertainty.theta_v widened
@@ -64,9 +75,11 @@ struct VerifierModel {
   // The rollouts' sticking rule also fires on slides slower than this fraction of the reference speed
   // (controllers/termination.h); the verifier's termination sets take such slow slides in (VerifyOptions).
   double stop_relative_speed = kStopRelativeSpeed;
+  // A robot sliding into a concave edge may meet the other face this far from it (rollout_contact_lift).
+  double contact_lift = 0;
   std::string reason;  // in words, for the JSON
 
-  VerifyOptions verify_options() const { return {spring_model, stop_relative_speed}; }
+  VerifyOptions verify_options() const { return {spring_model, stop_relative_speed, contact_lift}; }
 };
 
 // `task_yaml` is the text `task` was loaded from. For the admittance form with theta_f > 0 the text is
@@ -76,7 +89,8 @@ struct VerifierModel {
 VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
                                   ControllerForm form);
 
-// {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, reason}.
+// {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, contact_lift,
+// reason}.
 nlohmann::json verifier_model_json(const VerifierModel& model);
 
 }  // namespace cmt

@@ -7,6 +7,7 @@
 #include "controllers/termination.h"
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
+#include "experiments/verifier_model.h"
 #include "models/task_error.h"
 
 namespace cmt {
@@ -84,7 +85,8 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                         {"steps", steps},
                         {"seconds", seconds},
                         {"spring_model", spring_model_name(r.spring_model)},
-                        {"stop_relative_speed", r.stop_relative_speed}};
+                        {"stop_relative_speed", r.stop_relative_speed},
+                        {"contact_lift", r.contact_lift}};
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;
@@ -101,6 +103,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     bool reached = false;
     SpringModel spring_model = SpringModel::kVelocity;
     double stop_relative_speed = kStopRelativeSpeed;
+    double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -124,6 +127,11 @@ void add_verify_command(CLI::App& app, CommandState& state) {
          "a stop, as in the rollouts (default " +
              std::to_string(kStopRelativeSpeed) + "); 0 = Coulomb sticking only (the thesis)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--contact-lift", options->contact_lift,
+                  "how far (task units) a sliding robot may rise off a face (a slide into a concave edge may "
+                  "meet the other face that high); default: the rollouts' MuJoCo scene, (m/b) mu_max V "
+                  "(docs/verifier.md \"Contact lift\"); 0 = Buckley's first-order contact")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
@@ -142,7 +150,9 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     VerifyResult result;
     try {
       result = verify_strategy(*task, strategy,
-                               VerifyOptions{options->spring_model, options->stop_relative_speed});
+                               VerifyOptions{options->spring_model, options->stop_relative_speed,
+                                             options->contact_lift >= 0 ? options->contact_lift
+                                                                        : rollout_contact_lift(*task)});
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;

@@ -6,6 +6,18 @@
 namespace cmt {
 namespace {
 
+// The map, leaving y alone for planar tasks.
+struct PlanarAwareTransform {
+  TaskTransform map;
+  bool planar = false;
+  Vec3 point(const Vec3& x) const {
+    Vec3 y = map.point(x);
+    if (planar) y.y() = x.y();
+    return y;
+  }
+  Vec3 direction(const Vec3& d) const { return map.direction(d); }
+};
+
 bool signed_permutation(const Eigen::Matrix3d& r) {
   for (int i = 0; i < 3; ++i) {
     int nonzero = 0;
@@ -19,22 +31,22 @@ bool signed_permutation(const Eigen::Matrix3d& r) {
   return r.determinant() == 1;
 }
 
-AxisBox map_box(const AxisBox& b, const TaskTransform& m) {
+AxisBox map_box(const AxisBox& b, const PlanarAwareTransform& m) {
   const Vec3 a = m.point(b.min), c = m.point(b.max);
   return {a.cwiseMin(c), a.cwiseMax(c)};
 }
 
-void map_part(ConvexPart& part, const TaskTransform& m) {
+void map_part(ConvexPart& part, const PlanarAwareTransform& m) {
   part.box = map_box(part.box, m);
   for (Vec3& v : part.vertices) v = m.point(v);
 }
 
-void map_termination(MotionTermination& t, const TaskTransform& m) {
+void map_termination(MotionTermination& t, const PlanarAwareTransform& m) {
   for (AxisBox& b : t.position) b = map_box(b, m);
   for (ForceCone& f : t.force) f.direction = m.direction(f.direction);
 }
 
-void map_region(Region& r, const TaskTransform& m) {
+void map_region(Region& r, const PlanarAwareTransform& m) {
   for (Vec3& p : r.points) p = m.point(p);
 }
 
@@ -68,22 +80,25 @@ TaskTransform TaskTransform::after(const TaskTransform& first) const {
   return t;
 }
 
-Task transformed(const Task& task, const TaskTransform& m) {
-  if (!signed_permutation(m.rotation))
+Task transformed(const Task& task, const TaskTransform& map) {
+  if (!signed_permutation(map.rotation))
     throw std::invalid_argument("task transform: the rotation must be a signed permutation with det +1");
-  if (!(m.scale > 0)) throw std::invalid_argument("task transform: the scale must be positive");
-  if (task.dimension == 2 && (m.rotation(1, 1) != 1 || m.offset.y() != 0))
+  if (!(map.scale > 0)) throw std::invalid_argument("task transform: the scale must be positive");
+  if (task.dimension == 2 && (map.rotation(1, 1) != 1 || map.offset.y() != 0))
     throw std::invalid_argument("task transform: a planar task turns only about y and moves only in x and z");
+  // A planar task's y is the extrusion axis, clipped to a slab of fixed half-depth (kPlanarClipHalfDepth, in
+  // any units): its y coordinates are not lengths of the task and stay as they are.
+  PlanarAwareTransform m{map, task.dimension == 2};
   Task out = task;
-  if (m.units) out.units = *m.units;
-  out.uncertainty.eps_s *= m.scale;
-  out.uncertainty.eps_p *= m.scale;
-  out.uncertainty.step *= m.scale;
+  if (map.units) out.units = *map.units;
+  out.uncertainty.eps_s *= map.scale;
+  out.uncertainty.eps_p *= map.scale;
+  out.uncertainty.step *= map.scale;
   for (auto* parts : {&out.robot, &out.environment, &out.cspace})
     for (ConvexPart& p : *parts) map_part(p, m);
   if (task.physical()) {  // the robot's parts are relative to its reference point: turned and scaled only
-    TaskTransform about_origin = m;
-    about_origin.offset = Vec3::Zero();
+    PlanarAwareTransform about_origin = m;
+    about_origin.map.offset = Vec3::Zero();
     out.robot = task.robot;
     for (ConvexPart& p : out.robot) map_part(p, about_origin);
   }

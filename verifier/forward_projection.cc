@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <map>
 
 #include "verifier/damper.h"
 #include "verifier/internal/fixpoint.h"
@@ -18,6 +19,8 @@ namespace {
 
 using namespace fp;
 constexpr double kPi = std::numbers::pi;
+// Contact-lift strips seeded over an edge's reached intervals before the strip along the whole edge is taken.
+constexpr int kLiftStripRounds = 8;
 
 // Step A's in-plane sweep on one face: none, the whole face, or the wedge W of directions b_minus..b_plus.
 struct Sweep {
@@ -65,9 +68,10 @@ Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
 class Projector {
  public:
   Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
-            double stop_relative_speed)
+            double stop_relative_speed, double contact_lift)
       : c_(lt.cspace),
         v_(v.normalized()),
+        lift_(std::max(0.0, contact_lift)),
         theta_v_(lt.task.uncertainty.theta_v),
         reached_(start),
         r_(reached_.impl()) {
@@ -218,6 +222,8 @@ class Projector {
       if (iv.t0 <= kEdgeParamSlack && e.vertex_a >= 0) add_vertex(e.vertex_a - nf_ - ne_);
       if (iv.t1 >= 1 - kEdgeParamSlack && e.vertex_b >= 0) add_vertex(e.vertex_b - nf_ - ne_);
     }
+    // The lift bands first: the robot may reach them on its way to the edge, whatever the edge's class.
+    if (lift_ > 0 && e.shape == EdgeShape::kConcave) add_lift_bands(ei, ivs);
     if (cls_[id] == StickClass::kMust) return;
     // B. Sliding along the edge toward an end reaches the end. A flat edge (a cut between coplanar faces) is
     // no crease: motion along it is motion on the plane, covered by both faces' sliding wedges (the segment
@@ -252,6 +258,58 @@ class Projector {
     }
   }
 
+  // Contact lift at a concave edge: a robot sliding on one face toward the edge may be up to lift_ off it.
+  // While it is off the face its velocity is still within theta_v of the command, so its projection onto the
+  // face moves within the face's sweep wedge (which holds the tangential flights): it stays over the reached
+  // region and meets the other face above the reached segment [a, b] of the edge. That face gets the strip
+  // [a, b] + [0, lift] d (d in the face, away from the edge), clipped to the face, when the first face is
+  // reached and may slide toward the edge (the lift comes from slipping). When both faces slide into the
+  // edge, each strip's sweep reaches the edge lift tan(alpha) further along it, and the strips creep along
+  // the edge; after kLiftStripRounds strips on an edge, the strip along the whole edge is taken at once.
+  void add_lift_bands(int ei, const std::vector<EdgeInterval>& ivs) {
+    const Edge& e = c_.edges()[ei];
+    const Vec3 t = (e.b - e.a).normalized();
+    const bool whole = ++lift_strips_[ei] > kLiftStripRounds;
+    for (int f : e.faces) {
+      bool fed = false;
+      for (int g : e.faces)
+        if (g != f) fed = fed || slides_toward(g, e);
+      if (!fed) continue;
+      const Face& face = c_.faces()[f];
+      Vec3 d = face.normal.cross(t);
+      if (d.dot(face_centroid(face) - e.a) < 0) d = -d;
+      const FaceChart& chart = r_.charts[f];
+      auto strip = [&](const Vec3& a, const Vec3& b) {
+        const Points2 rect = convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
+                                          chart.project(Vec3(a + lift_ * d))});
+        add_convex(f, clip(rect, r_.face_polygon[f]));
+      };
+      if (whole) {
+        strip(e.a, e.b);
+        continue;
+      }
+      for (const EdgeInterval& iv : ivs) strip(e.a + iv.t0 * (e.b - e.a), e.a + iv.t1 * (e.b - e.a));
+    }
+  }
+
+  static Vec3 face_centroid(const Face& face) {
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& q : face.polygon) centroid += q / static_cast<double>(face.polygon.size());
+    return centroid;
+  }
+
+  // Face g is reached and some sliding direction on it (its sweep wedge, tangential flights included) points
+  // toward edge e.
+  bool slides_toward(int g, const Edge& e) const {
+    const Sweep& sw = sweeps_[g];
+    if (cls_[g] == StickClass::kMust || sw.none || r_.faces[g].empty()) return false;
+    if (sw.whole) return true;
+    const Face& face = c_.faces()[g];
+    Vec3 m = face.normal.cross(e.b - e.a);
+    if (m.dot(face_centroid(face) - e.a) > 0) m = -m;  // out of the face, toward the edge
+    return sw.b_plus.dot(m) > 0 || sw.b_minus.dot(m) > 0;
+  }
+
   void process_vertex(int vi) {
     ++steps_;
     pend_vertex_[vi] = 0;
@@ -280,6 +338,7 @@ class Projector {
 
   const CSpace& c_;
   Vec3 v_;
+  double lift_;  // contact lift (task units)
   double theta_v_;
   ReachedSet reached_;
   ReachedSet::Impl& r_;
@@ -287,6 +346,7 @@ class Projector {
   std::vector<StickClass> cls_;
   std::vector<bool> stops_;  // the atom may stop the motion: it may stick or slide slower than the stop rule
   std::vector<Sweep> sweeps_;
+  std::map<int, int> lift_strips_;  // per edge: how often its lift strips were seeded
   FlightCone cone_;
   std::vector<PolygonSet2> pend_region_;
   std::vector<std::vector<Points2>> pend_seg_, pend_pt_;
@@ -298,8 +358,9 @@ class Projector {
 }  // namespace
 
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
-                                        const ReachedSet& start, const Vec3& v, double stop_relative_speed) {
-  return Projector(task, cones, start, v, stop_relative_speed).run();
+                                        const ReachedSet& start, const Vec3& v, double stop_relative_speed,
+                                        double contact_lift) {
+  return Projector(task, cones, start, v, stop_relative_speed, contact_lift).run();
 }
 
 }  // namespace cmt

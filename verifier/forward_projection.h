@@ -29,8 +29,11 @@ inline constexpr int kMaxFixpointSteps = 200000;
 // the friction cone, so v_a minus the velocity is in it), hence such atoms are those with a velocity within
 // theta_v + asin(kappa) of the friction cone (docs/verifier.md "Slow slides count as stops"). 0: Coulomb
 // sticking only.
+// `contact_lift` (>= 0, task units, VerifyOptions::contact_lift): a robot at a reached concave edge may touch
+// either adjacent face anywhere within that distance of the reached interval (it rose off the other face
+// while sliding); that band of each face is reached too. 0: first-order contact.
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
                                         const ReachedSet& start, const Vec3& v,
-                                        double stop_relative_speed = 0);
+                                        double stop_relative_speed = 0, double contact_lift = 0);
 
 }  // namespace cmt

@@ -28,7 +28,8 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.free_radius = p.free_radius;
     step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
   } else {
-    DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed);
+    DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed,
+                                               options.contact_lift);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;
@@ -58,6 +59,7 @@ class StrategyVerifier {
     out_.node_step.assign(strategy.nodes.size(), -1);
     out_.spring_model = options.spring_model;
     out_.stop_relative_speed = options.stop_relative_speed;
+    out_.contact_lift = options.contact_lift;
   }
 
   VerifyResult run() {

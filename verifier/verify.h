@@ -69,6 +69,7 @@ struct VerifyResult {
   bool reliable = false;
   SpringModel spring_model = SpringModel::kViaPoint;  // the model the spring motions were simulated with
   double stop_relative_speed = 0;                     // VerifyOptions::stop_relative_speed used
+  double contact_lift = 0;                            // VerifyOptions::contact_lift used
   std::vector<VerifyStep> steps;
   int failed_step = -1;  // index into steps, or -1
   std::string failure;   // why, when unreliable
@@ -99,6 +100,12 @@ struct VerifyOptions {
   // sets of dampers and of velocity-model springs (docs/verifier.md "Slow slides count as stops"). 0:
   // termination by Coulomb sticking only, as in the thesis.
   double stop_relative_speed = 0;
+  // How far (task units) a robot sliding on a face may rise off it (docs/verifier.md "Contact lift"). The
+  // rollouts' MuJoCo contact gives slip a separating velocity of up to mu x the slip speed, which the servo
+  // brings back within its time constant, so a slide into a concave edge may meet the other face up to that
+  // high and stick there (experiments/verifier_model.h derives the bound from the controller's gains). Damper
+  // projections seed that band beside every reached concave edge. 0: Buckley's first-order contact.
+  double contact_lift = 0;
 };
 
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.
