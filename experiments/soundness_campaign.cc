@@ -102,8 +102,9 @@ Scene draw_scene(Rng& rng, std::string* description) {
   const bool far = uniform01(rng) < 0.5;
   Vec3 offset;
   for (int k = 0; k < 3; ++k) {
-    const double mag = far ? std::exp(uniform(rng, std::log(kFarOffsetMin), std::log(kFarOffsetMax))) * per_inch
-                           : uniform(rng, 0, 5) * L;
+    const double mag =
+        far ? std::exp(uniform(rng, std::log(kFarOffsetMin), std::log(kFarOffsetMax))) * per_inch
+            : uniform(rng, 0, 5) * L;
     offset[k] = uniform01(rng) < 0.5 ? -mag : mag;
   }
   const Vec3 extent(uniform(rng, 4, 10) * L, uniform(rng, 4, 10) * L, uniform(rng, 3, 6) * L);
@@ -165,7 +166,8 @@ Scene draw_scene(Rng& rng, std::string* description) {
   std::ostringstream d;
   d << (s.spring ? "spring" : "damper") << ", " << nboxes << " boxes, " << s.units << ", "
     << (far ? "far" : "near") << ", start " << s.start_kind << " on " << (face == 0 ? "floor" : "box top")
-    << ", mu " << num(std::round(s.mu * 100) / 100) << ", theta_v " << num(std::round(s.u.theta_v * 100) / 100);
+    << ", mu " << num(std::round(s.mu * 100) / 100) << ", theta_v "
+    << num(std::round(s.u.theta_v * 100) / 100);
   *description = d.str();
   return s;
 }
@@ -210,30 +212,31 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
     rec.detail = e.what();
     return rec;
   }
-  const ForkedRun run = run_forked_with_budget(options.verifier_budget, [&](const std::function<void()>& done) {
-    ValidateOptions o;
-    o.n = options.rollouts;
-    o.seed = splitmix64(options.seed) ^ static_cast<std::uint64_t>(index);
-    o.threads = options.threads;
-    o.mode = SampleMode::kExtreme;
-    o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
-    o.after_verify = done;
-    const ValidationResult r = run_validation(task, yaml, "s", o);
-    nlohmann::json j;
-    j["reliable"] = r.prediction.reliable;
-    j["failure"] = r.prediction.failure;
-    j["rollouts"] = static_cast<int>(r.rollouts.size());
-    j["successes"] = r.successes;
-    j["unstable"] = r.unstable;
-    j["ends"] = static_cast<int>(r.ends.size());
-    j["outside"] = r.outside;
-    j["soundness"] = r.soundness;
-    j["soundness_bug"] = r.soundness_bug;
-    j["max_distance_outside"] = r.worst.empty() ? 0.0 : r.worst.front().distance;
-    j["verify_seconds"] = r.verify_seconds;
-    j["seed"] = o.seed;
-    return j.dump();
-  });
+  const ForkedRun run =
+      run_forked_with_budget(options.verifier_budget, [&](const std::function<void()>& done) {
+        ValidateOptions o;
+        o.n = options.rollouts;
+        o.seed = splitmix64(options.seed) ^ static_cast<std::uint64_t>(index);
+        o.threads = options.threads;
+        o.mode = SampleMode::kExtreme;
+        o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
+        o.after_verify = done;
+        const ValidationResult r = run_validation(task, yaml, "s", o);
+        nlohmann::json j;
+        j["reliable"] = r.prediction.reliable;
+        j["failure"] = r.prediction.failure;
+        j["rollouts"] = static_cast<int>(r.rollouts.size());
+        j["successes"] = r.successes;
+        j["unstable"] = r.unstable;
+        j["ends"] = static_cast<int>(r.ends.size());
+        j["outside"] = r.outside;
+        j["soundness"] = r.soundness;
+        j["soundness_bug"] = r.soundness_bug;
+        j["max_distance_outside"] = r.worst.empty() ? 0.0 : r.worst.front().distance;
+        j["verify_seconds"] = r.verify_seconds;
+        j["seed"] = o.seed;
+        return j.dump();
+      });
   if (run.timed_out) {
     rec.status = "timed-out";
     rec.detail = "verifier over " + num(options.verifier_budget) + " s";
@@ -365,7 +368,8 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       } else {
         rec = validate_text(g.task.yaml, options, i);
         Scene scene = g.scene;
-        if (rec.status == "bug" && options.minimize) scene = minimize(scene, g.task.description, options, i, &rec);
+        if (rec.status == "bug" && options.minimize)
+          scene = minimize(scene, g.task.description, options, i, &rec);
         if (rec.status == "bug") {
           const std::filesystem::path file = options.out / "bugs" / ("task-" + std::to_string(i) + ".yaml");
           std::ofstream(file) << to_yaml(scene, i, g.task.description);

@@ -1,9 +1,9 @@
 // The random-task soundness campaign (property-based testing of the verifier against physics): a seeded
-// generator of small C-space scenes that nobody tuned the verifier for (a floor and 0-3 boxes, near or far from
-// the origin, in inches or millimetres; a start on a top face; one damper or spring motion; error bounds across
-// the documented ranges), each verified and checked by extreme-mode MuJoCo rollouts (cmt validate). A task
-// whose rollouts end outside the prediction, or fail under a "reliable" verdict, is a soundness bug: it is
-// minimized (parts dropped, the start reduced to a point while the bug stays) and saved with its replay
+// generator of small C-space scenes that nobody tuned the verifier for (a floor and 0-3 boxes, near or far
+// from the origin, in inches or millimetres; a start on a top face; one damper or spring motion; error bounds
+// across the documented ranges), each verified and checked by extreme-mode MuJoCo rollouts (cmt validate). A
+// task whose rollouts end outside the prediction, or fail under a "reliable" verdict, is a soundness bug: it
+// is minimized (parts dropped, the start reduced to a point while the bug stays) and saved with its replay
 // command. docs/validation.md, "Random-task soundness campaign".
 #pragma once
 
@@ -30,10 +30,10 @@ CampaignTask generate_campaign_task(std::uint64_t seed, int index);
 struct CampaignOptions {
   int tasks = 30;
   std::uint64_t seed = 1;
-  int rollouts = 150;              // extreme-mode rollouts per task
-  int threads = 1;                 // rollout threads (results are identical for every count)
-  double verifier_budget = 120;    // s of wall clock per verification; a task over it is recorded, not scored
-  bool minimize = true;            // shrink each bug before saving it
+  int rollouts = 150;            // extreme-mode rollouts per task
+  int threads = 1;               // rollout threads (results are identical for every count)
+  double verifier_budget = 120;  // s of wall clock per verification; a task over it is recorded, not scored
+  bool minimize = true;          // shrink each bug before saving it
   std::filesystem::path out = "out/soundness-campaign";  // results.jsonl, bugs/
 };
 

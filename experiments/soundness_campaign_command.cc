@@ -24,7 +24,8 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--tasks", o->campaign.tasks, "number of generated tasks")->capture_default_str();
   cmd->add_option("--seed", o->campaign.seed, "campaign seed (task i is the same for the same seed)")
       ->capture_default_str();
-  cmd->add_option("-n,--rollouts", o->campaign.rollouts, "extreme-mode rollouts per task")->capture_default_str();
+  cmd->add_option("-n,--rollouts", o->campaign.rollouts, "extreme-mode rollouts per task")
+      ->capture_default_str();
   cmd->add_option("--threads", o->threads, "rollout threads (0: all cores; results do not depend on it)");
   cmd->add_option("--verifier-budget", o->campaign.verifier_budget,
                   "seconds of wall clock per verification; a task over it is recorded as timed-out")
@@ -49,10 +50,16 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     });
     nlohmann::json bugs = nlohmann::json::array();
     for (const CampaignRecord& r : s.bug_records) bugs.push_back(campaign_record_json(r));
-    const nlohmann::json j = {{"tasks", s.run},         {"resumed", s.resumed},   {"sound", s.sound},
-                              {"bugs", s.bugs},         {"invalid", s.invalid},   {"timed_out", s.timed_out},
-                              {"reliable", s.reliable}, {"seed", o->campaign.seed},
-                              {"rollouts", o->campaign.rollouts}, {"soundness_bugs", bugs},
+    const nlohmann::json j = {{"tasks", s.run},
+                              {"resumed", s.resumed},
+                              {"sound", s.sound},
+                              {"bugs", s.bugs},
+                              {"invalid", s.invalid},
+                              {"timed_out", s.timed_out},
+                              {"reliable", s.reliable},
+                              {"seed", o->campaign.seed},
+                              {"rollouts", o->campaign.rollouts},
+                              {"soundness_bugs", bugs},
                               {"results", (o->campaign.out / "results.jsonl").string()}};
     if (state.json)
       print_json(j);

@@ -52,9 +52,9 @@ double sensed_force_extra_angle(double theta_f, double servo_ratio = kAdmittance
 // The contact lift of the rollouts' scene for a task (VerifyOptions::contact_lift, docs/verifier.md "Contact
 // lift"): MuJoCo's convex contact gives slip a separating normal velocity of up to mu x the slip speed
 // (docs/mujoco-scene.md "Sliding hops"); once the contact lets go, the first-order servo m xddot = −b (xdot −
-// v_c) takes the normal velocity w0 back toward the command's normal component v_n <= 0 (a command with v_n > 0
-// leaves the face anyway: a flight) with time constant m / b, so the robot rises at most (m / b) w0 <= (m / b)
-// mu_max V, V the fastest commanded speed (damper speed or spring top speed, SimOptions, a fraction of the
+// v_c) takes the normal velocity w0 back toward the command's normal component v_n <= 0 (a command with v_n >
+// 0 leaves the face anyway: a flight) with time constant m / b, so the robot rises at most (m / b) w0 <= (m /
+// b) mu_max V, V the fastest commanded speed (damper speed or spring top speed, SimOptions, a fraction of the
 // scene scale per second) and mu_max the largest friction coefficient of the task's faces. Impedance form;
 // the admittance form's force feedback adds to the rebound (its measured hops stay below the bound, the docs
 // say by how much).

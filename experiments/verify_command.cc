@@ -149,10 +149,10 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     }
     VerifyResult result;
     try {
-      result = verify_strategy(*task, strategy,
-                               VerifyOptions{options->spring_model, options->stop_relative_speed,
-                                             options->contact_lift >= 0 ? options->contact_lift
-                                                                        : rollout_contact_lift(*task)});
+      result = verify_strategy(
+          *task, strategy,
+          VerifyOptions{options->spring_model, options->stop_relative_speed,
+                        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)});
     } catch (const UnsupportedMotion& e) {
       state.exit_status = report_bad_input(e.what(), state.json);
       return;

@@ -1,5 +1,5 @@
-// Similarity maps of a whole task (geometry, regions, commands, error bounds): y = scale R x + offset with R a
-// rotation by multiples of 90° (a signed permutation, det +1), optionally relabelled in other length units.
+// Similarity maps of a whole task (geometry, regions, commands, error bounds): y = scale R x + offset with R
+// a rotation by multiples of 90° (a signed permutation, det +1), optionally relabelled in other length units.
 // A verdict must not depend on where a task sits in the world, on how it is turned, or on the units it is
 // written in: the verifier's invariance tests run every built-in strategy on transformed copies.
 #pragma once

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <map>
+#include <numbers>
 
 #include "verifier/damper.h"
 #include "verifier/internal/fixpoint.h"
@@ -280,8 +280,9 @@ class Projector {
       if (d.dot(face_centroid(face) - e.a) < 0) d = -d;
       const FaceChart& chart = r_.charts[f];
       auto strip = [&](const Vec3& a, const Vec3& b) {
-        const Points2 rect = convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
-                                          chart.project(Vec3(a + lift_ * d))});
+        const Points2 rect =
+            convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
+                         chart.project(Vec3(a + lift_ * d))});
         add_convex(f, clip(rect, r_.face_polygon[f]));
       };
       if (whole) {

@@ -93,7 +93,8 @@ void add_eroded_cone(const Vec3& x, const CircularCone& cone, double eps_s, Poly
 std::vector<Polyhedron> edge_vertex_strong(const CSpace& cspace, int atom_id, const std::vector<Vec3>& points,
                                            const Uncertainty& u) {
   std::vector<Polyhedron> out;
-  for (const std::vector<CircularCone>& cones : UniqueStick::for_atom(cspace, atom_id).must_cones(u.theta_v)) {
+  for (const std::vector<CircularCone>& cones :
+       UniqueStick::for_atom(cspace, atom_id).must_cones(u.theta_v)) {
     Polyhedron set;
     set.kind = Polyhedron::Kind::kConvex;
     for (const Vec3& x : points)

@@ -118,7 +118,8 @@ std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) con
   auto add = [&out](std::vector<CircularCone> set, bool ok) {
     for (std::size_t i = 0; ok && i < set.size(); ++i)
       for (std::size_t j = i + 1; ok && j < set.size(); ++j)
-        ok = std::acos(std::clamp(set[i].axis.dot(set[j].axis), -1.0, 1.0)) < set[i].half_angle + set[j].half_angle;
+        ok = std::acos(std::clamp(set[i].axis.dot(set[j].axis), -1.0, 1.0)) <
+             set[i].half_angle + set[j].half_angle;
     if (ok) out.push_back(std::move(set));
   };
   auto face_alternatives = [&] {  // each face's own narrowed cone
@@ -131,11 +132,13 @@ std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) con
     case Kind::kIntersection: {
       std::vector<CircularCone> set;
       bool ok = true;
-      for (std::size_t i = 0; i < normals_.size(); ++i) ok = ok && narrowed(-normals_[i], std::atan(mus_[i]), &set);
+      for (std::size_t i = 0; i < normals_.size(); ++i)
+        ok = ok && narrowed(-normals_[i], std::atan(mus_[i]), &set);
       add(set, ok && !set.empty());
       break;
     }
-    case Kind::kCorner: {  // pressing into every face: f . n_k <= 0, each plane narrowed to cone(−n_k, pi/2 − angle)
+    case Kind::kCorner: {  // pressing into every face: f . n_k <= 0, each plane narrowed to cone(−n_k, pi/2 −
+                           // angle)
       std::vector<CircularCone> set;
       bool ok = true;
       for (const Vec3& n : normals_) ok = ok && narrowed(-n, kHalfPi, &set);

@@ -38,11 +38,12 @@ class UniqueStick {
   // Convex sets of force directions that keep sticking the only Coulomb solution under a direction error of
   // `angle`: every direction within `angle` of a member lies in the unique-stick set. Returned as a union
   // (outer list) of intersections of circular cones (inner lists); an alternative whose cone would narrow to
-  // nothing is left out. Faces, and atoms of the intersection kind: ∩ cone(−n_i, phi_i − angle). Perpendicular
-  // concave edges: the kinetic wedge (its four bounding planes, each narrowed to cone(−w, pi/2 − angle)), or
-  // either face's own narrowed cone (inside a face's cone neither that face nor the edge can slide: the other
-  // wall only adds normal force and friction against the sliding direction). Concave box corners: pressing
-  // into all three faces by at least `angle`, or any one face's narrowed cone (the same argument).
+  // nothing is left out. Faces, and atoms of the intersection kind: ∩ cone(−n_i, phi_i − angle).
+  // Perpendicular concave edges: the kinetic wedge (its four bounding planes, each narrowed to cone(−w, pi/2
+  // − angle)), or either face's own narrowed cone (inside a face's cone neither that face nor the edge can
+  // slide: the other wall only adds normal force and friction against the sliding direction). Concave box
+  // corners: pressing into all three faces by at least `angle`, or any one face's narrowed cone (the same
+  // argument).
   std::vector<std::vector<CircularCone>> must_cones(double angle) const;
 
  private:

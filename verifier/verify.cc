@@ -29,7 +29,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
   } else {
     DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed,
-                                               options.contact_lift);
+                                                options.contact_lift);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.fallback = p.fallback;

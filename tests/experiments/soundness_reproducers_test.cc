@@ -85,7 +85,7 @@ TEST(SoundnessReproducers, ContactLiftCoversHopsIntoAWall) {
   EXPECT_LT(r.successes, static_cast<int>(r.rollouts.size()));  // some rollouts do stick above the edge
   double highest = 0;
   for (const ObservedEnd& e : r.ends) highest = std::max(highest, e.end.z());
-  EXPECT_GT(highest, r.contact_tolerance);          // the hop is real: above the edge by more than the tolerance
+  EXPECT_GT(highest, r.contact_tolerance);  // the hop is real: above the edge by more than the tolerance
   EXPECT_LE(highest, r.prediction.contact_lift);  // and within the bound
 }
 

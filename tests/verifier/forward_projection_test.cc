@@ -234,11 +234,12 @@ TEST(Verify, CubeSpringStickIsReliable) {
 namespace cmt {
 namespace {
 
-// Contact lift (VerifyOptions::contact_lift): floor z = 0 of a room, mu = .75 (phi = .6435), theta_v = .1, the
-// damper v = (0, .8, -.6). On the floor the command is acos(.6) = .9273 from -z, beyond phi + theta_v = .7435:
-// it slides toward the wall y = 5. On the wall (inward normal +y) it is acos(.8) = .6435 from the normal, within
-// phi + theta_v (may stick) but not within phi - theta_v = .5435 (must). Without lift the motion ends on the
-// floor-wall edge only; with lift .01 the robot may meet the wall up to .01 above the edge and stick there.
+// Contact lift (VerifyOptions::contact_lift): floor z = 0 of a room, mu = .75 (phi = .6435), theta_v = .1,
+// the damper v = (0, .8, -.6). On the floor the command is acos(.6) = .9273 from -z, beyond phi + theta_v =
+// .7435: it slides toward the wall y = 5. On the wall (inward normal +y) it is acos(.8) = .6435 from the
+// normal, within phi + theta_v (may stick) but not within phi - theta_v = .5435 (must). Without lift the
+// motion ends on the floor-wall edge only; with lift .01 the robot may meet the wall up to .01 above the edge
+// and stick there.
 TEST(ForwardProjection, ContactLiftSeedsTheWallStripAboveAConcaveEdge) {
   const std::string yaml = scene(0.75, 0.1, "[]", kRoom, "[0, 0, 0]", "[0, 0.8, -0.6]");
   auto task = load_task_from_string(yaml, "lift");
@@ -247,8 +248,8 @@ TEST(ForwardProjection, ContactLiftSeedsTheWallStripAboveAConcaveEdge) {
   const Vec3 v(0, 0.8, -0.6);
   const DamperProjection plain = forward_project_damper(*task, cones, start, v, 0, 0);
   const DamperProjection lifted = forward_project_damper(*task, cones, start, v, 0, 0.01);
-  EXPECT_GT(plain.termination.distance(Vec3(0, 5, 0.005)), 0.004);  // first-order contact: the edge only
-  EXPECT_LE(lifted.termination.distance(Vec3(0, 5, 0.005)), 1e-9);  // inside the strip
+  EXPECT_GT(plain.termination.distance(Vec3(0, 5, 0.005)), 0.004);   // first-order contact: the edge only
+  EXPECT_LE(lifted.termination.distance(Vec3(0, 5, 0.005)), 1e-9);   // inside the strip
   EXPECT_GE(lifted.termination.distance(Vec3(0, 5, 0.02)), 0.0099);  // above it: not reached
 }
 

@@ -143,13 +143,13 @@ TEST_F(HoleBottom, ConvexRimEdge) {
   ASSERT_EQ(c.atom_kind(rim), AtomKind::kEdge);
   ASSERT_EQ(c.edges()[c.atom_index(rim)].shape, EdgeShape::kConvex);
   const auto r = spring_sticking_regions(c, rim, task_->task.uncertainty);
-  // Deep into the obstacle corner along −(1,0,1): inside the summed cone, so sticking may happen (may), but not
-  // must: the pull makes 45° with either face's inward normal, beyond phi = .4475, so sliding down the wall
-  // (or along the top, off the rim) is also a Coulomb solution.
+  // Deep into the obstacle corner along −(1,0,1): inside the summed cone, so sticking may happen (may), but
+  // not must: the pull makes 45° with either face's inward normal, beyond phi = .4475, so sliding down the
+  // wall (or along the top, off the rim) is also a Coulomb solution.
   EXPECT_EQ(classify_spring(r, Vec3(-1, 0, 0) - 5 * Vec3(1, 0, 1).normalized()), StickClass::kMay);
   // Pulling almost straight down at the rim, a hair toward the wall: on the top face it would stick, but the
-  // wall's normal force is tiny, so sliding down the wall is also a solution. Only "inside every face's cone" is
-  // certain at a convex edge, and no direction is within phi − theta_v = .1975 of both −z and −x: may.
+  // wall's normal force is tiny, so sliding down the wall is also a solution. Only "inside every face's cone"
+  // is certain at a convex edge, and no direction is within phi − theta_v = .1975 of both −z and −x: may.
   EXPECT_EQ(classify_spring(r, Vec3(-1.05, 0, -5)), StickClass::kMay);
   // Out in the free space above the hole (pulling up and into the hole): never.
   EXPECT_EQ(classify_spring(r, Vec3(0, 0, 2)), StickClass::kNever);
@@ -157,8 +157,9 @@ TEST_F(HoleBottom, ConvexRimEdge) {
 
 TEST_F(HoleBottom, ConcaveEdgeMustStickInsideOneFaceCone) {
   // The bottom edge along y at x = -1: pulling straight down (p − x = (.3, ·, −8) from both ends y = ±1 after
-  // the 1.02 erosion shift along −z, angle atan(|(.3, 1)| / 7) = .149 < .1975) stays inside the floor's narrowed
-  // cone: the wall only adds normal force and friction against any sliding, so sticking is the only solution.
+  // the 1.02 erosion shift along −z, angle atan(|(.3, 1)| / 7) = .149 < .1975) stays inside the floor's
+  // narrowed cone: the wall only adds normal force and friction against any sliding, so sticking is the only
+  // solution.
   const CSpace& c = task_->cspace;
   const int edge = c.nearest_atom(Vec3(-1, 0, -2), 1e-9);
   ASSERT_EQ(c.atom_kind(edge), AtomKind::kEdge);
@@ -171,9 +172,9 @@ TEST_F(HoleBottom, ConcaveEdgeMustStickInsideOneFaceCone) {
 
 TEST(SpringConvexCorner, DiagonalPullIntoTheBlockIsNotMust) {
   // A convex block corner (mu .48, theta_v .25, eps_s .2), the pull 1.5 in along the diagonal into the block:
-  // on the top face the pull's tangential/normal ratio is sqrt 2 > mu, so sliding onto the top (or a side) is a
-  // Coulomb solution too. Buckley's summed cone of the three narrowed face cones holds this direction, so the
-  // old strong region called it "must" and the projection stopped at the vertex.
+  // on the top face the pull's tangential/normal ratio is sqrt 2 > mu, so sliding onto the top (or a side) is
+  // a Coulomb solution too. Buckley's summed cone of the three narrowed face cones holds this direction, so
+  // the old strong region called it "must" and the projection stopped at the vertex.
   const std::string yaml = R"(
 name: corner
 friction: 0.48
