@@ -49,7 +49,12 @@ FaceChart make_chart(const Face& face) {
         bj = j;
       }
     }
-  chart.plane = Plane3(exact(poly[0]), exact(poly[bi]), exact(poly[bj]));
+  // A face whose polygon is degenerate (fewer than three points, or collinear ones: a sliver left by planes
+  // that coincide up to rounding) has no plane through its corners. Its own plane n . x = offset then serves,
+  // so that lifting into the chart (a division by the dropped axis's coefficient) stays defined.
+  if (poly.size() >= 3) chart.plane = Plane3(exact(poly[0]), exact(poly[bi]), exact(poly[bj]));
+  if (poly.size() < 3 || plane_coef(chart.plane, chart.drop) == 0)
+    chart.plane = Plane3(FT(n.x()), FT(n.y()), FT(n.z()), FT(-face.offset));
   const Vector3 o = chart.plane.orthogonal_vector();
   if (CGAL::to_double(o.x()) * n.x() + CGAL::to_double(o.y()) * n.y() + CGAL::to_double(o.z()) * n.z() < 0)
     chart.plane = chart.plane.opposite();
