@@ -116,6 +116,7 @@ std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) con
   // Two cones whose axes are further apart than their half-angles add up meet only at the apex: the
   // alternative holds no direction and is left out.
   auto add = [&out](std::vector<CircularCone> set, bool ok) {
+    ok = ok && !set.empty();  // no cone would be every direction: never an alternative
     for (std::size_t i = 0; ok && i < set.size(); ++i)
       for (std::size_t j = i + 1; ok && j < set.size(); ++j)
         ok = std::acos(std::clamp(set[i].axis.dot(set[j].axis), -1.0, 1.0)) <
@@ -125,7 +126,8 @@ std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) con
   auto face_alternatives = [&] {  // each face's own narrowed cone
     for (std::size_t i = 0; i < normals_.size() && i < mus_.size(); ++i) {
       std::vector<CircularCone> set;
-      add(set, narrowed(-normals_[i], std::atan(mus_[i]), &set));
+      const bool ok = narrowed(-normals_[i], std::atan(mus_[i]), &set);
+      add(set, ok);
     }
   };
   switch (kind_) {
@@ -134,11 +136,11 @@ std::vector<std::vector<CircularCone>> UniqueStick::must_cones(double angle) con
       bool ok = true;
       for (std::size_t i = 0; i < normals_.size(); ++i)
         ok = ok && narrowed(-normals_[i], std::atan(mus_[i]), &set);
-      add(set, ok && !set.empty());
+      add(set, ok);
       break;
     }
-    case Kind::kCorner: {  // pressing into every face: f . n_k <= 0, each plane narrowed to cone(−n_k, pi/2 −
-                           // angle)
+    case Kind::kCorner: {
+      // Pressing into every face: f . n_k <= 0, each plane narrowed to cone(−n_k, pi/2 − angle).
       std::vector<CircularCone> set;
       bool ok = true;
       for (const Vec3& n : normals_) ok = ok && narrowed(-n, kHalfPi, &set);

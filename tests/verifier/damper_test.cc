@@ -167,3 +167,32 @@ TEST(DamperStick, ConvexEdgeOfTheHoleRim) {
 
 }  // namespace
 }  // namespace cmt
+
+namespace cmt {
+namespace {
+
+// UniqueStick::must_cones: a face (mu .5, phi = .4636) under theta .1 keeps one cone about −n of half-angle
+// .3636; under theta .5 > phi nothing. A concave box corner (normals +x, +y, +z, mu .5) under theta .1: pressing
+// into all three (cones of half-angle pi/2 − .1 about each −n_k) and each face's own cone: four alternatives,
+// none empty (an empty alternative would mean every direction).
+TEST(UniqueStickMustCones, FaceAndCornerAlternatives) {
+  const auto face = UniqueStick::face(Vec3::UnitZ(), 0.5).must_cones(0.1);
+  ASSERT_EQ(face.size(), 1u);
+  ASSERT_EQ(face[0].size(), 1u);
+  EXPECT_NEAR(face[0][0].half_angle, std::atan(0.5) - 0.1, 1e-12);
+  EXPECT_TRUE(face[0][0].axis.isApprox(-Vec3::UnitZ()));
+  EXPECT_TRUE(UniqueStick::face(Vec3::UnitZ(), 0.5).must_cones(0.5).empty());
+  const auto corner =
+      UniqueStick::corner(Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), {0.5, 0.5, 0.5}).must_cones(0.1);
+  ASSERT_EQ(corner.size(), 4u);
+  EXPECT_EQ(corner[0].size(), 3u);
+  EXPECT_NEAR(corner[0][0].half_angle, std::numbers::pi / 2 - 0.1, 1e-12);
+  for (const auto& alternative : corner) EXPECT_FALSE(alternative.empty());
+  // Three face cones of a convex corner (intersection kind) are pairwise disjoint: no alternative.
+  EXPECT_TRUE(UniqueStick::intersection({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, {0.5, 0.5, 0.5})
+                  .must_cones(0.1)
+                  .empty());
+}
+
+}  // namespace
+}  // namespace cmt
