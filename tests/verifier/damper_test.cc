@@ -172,9 +172,9 @@ namespace cmt {
 namespace {
 
 // UniqueStick::must_cones: a face (mu .5, phi = .4636) under theta .1 keeps one cone about −n of half-angle
-// .3636; under theta .5 > phi nothing. A concave box corner (normals +x, +y, +z, mu .5) under theta .1: pressing
-// into all three (cones of half-angle pi/2 − .1 about each −n_k) and each face's own cone: four alternatives,
-// none empty (an empty alternative would mean every direction).
+// .3636; under theta .5 > phi nothing. A concave box corner (normals +x, +y, +z, mu .5) under theta .1:
+// pressing into all three (cones of half-angle pi/2 − .1 about each −n_k) and each face's own cone: four
+// alternatives, none empty (an empty alternative would mean every direction).
 TEST(UniqueStickMustCones, FaceAndCornerAlternatives) {
   const auto face = UniqueStick::face(Vec3::UnitZ(), 0.5).must_cones(0.1);
   ASSERT_EQ(face.size(), 1u);
