@@ -13,6 +13,7 @@
 #include "verifier/damper.h"
 #include "verifier/internal/fixpoint.h"
 #include "verifier/internal/flight.h"
+#include "verifier/slide_forever.h"
 
 namespace cmt {
 namespace {
@@ -72,6 +73,7 @@ class Projector {
       : c_(lt.cspace),
         v_(v.normalized()),
         lift_(std::max(0.0, contact_lift)),
+        kappa_(std::max(0.0, stop_relative_speed)),
         theta_v_(lt.task.uncertainty.theta_v),
         reached_(start),
         r_(reached_.impl()) {
@@ -121,6 +123,9 @@ class Projector {
     }
     out.termination = reached_.restricted(stops_);
     out.may_not_terminate = out.termination.empty();
+    std::vector<bool> must(cls_.size());
+    for (std::size_t id = 0; id < cls_.size(); ++id) must[id] = cls_[id] == StickClass::kMust;
+    out.slide_forever = damper_slide_forever_atoms(c_, reached_, v_, theta_v_, kappa_, must);
     out.reached = std::move(reached_);
     out.steps = steps_;
     return out;
@@ -339,7 +344,8 @@ class Projector {
 
   const CSpace& c_;
   Vec3 v_;
-  double lift_;  // contact lift (task units)
+  double lift_;   // contact lift (task units)
+  double kappa_;  // the stop rule's relative speed
   double theta_v_;
   ReachedSet reached_;
   ReachedSet::Impl& r_;

@@ -4,6 +4,8 @@
 // by sticking; every approximation adds reachable points.
 #pragma once
 
+#include <vector>
+
 #include "models/loaded_task.h"
 #include "verifier/atom_cone.h"
 #include "verifier/reached_set.h"
@@ -15,6 +17,8 @@ struct DamperProjection {
   ReachedSet termination;  // T_m(S): the reached points of atoms whose damper class is must or may
   // No reached atom can stick: the motion may never terminate (reported as a failure).
   bool may_not_terminate = false;
+  // Reached faces and edges where the motion may slide forever (verifier/slide_forever.h; a failure).
+  std::vector<int> slide_forever = {};
   // The fixpoint hit kMaxFixpointSteps and fell back to "every atom is reached" (sound, uninformative).
   bool fallback = false;
   int steps = 0;  // work items processed

@@ -20,6 +20,7 @@
 #include "verifier/internal/fixpoint.h"
 #include "verifier/internal/spring_flight.h"
 #include "verifier/internal/spring_velocity.h"
+#include "verifier/slide_forever.h"
 #include "verifier/spring.h"
 
 namespace cmt {
@@ -735,7 +736,14 @@ const char* spring_model_name(SpringModel m) {
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model, double stop_relative_speed) {
-  return SpringProjector(task, start, p, model, stop_relative_speed).run();
+  SpringProjection out = SpringProjector(task, start, p, model, stop_relative_speed).run();
+  const CSpace& c = task.cspace;
+  std::vector<bool> strong(static_cast<std::size_t>(c.atom_count()), false);
+  for (int id = static_cast<int>(c.faces().size()); id < c.atom_count(); ++id)
+    strong[static_cast<std::size_t>(id)] = spring_sticking_regions(c, id, task.task.uncertainty).strongly_contains(p);
+  out.slide_forever = spring_slide_forever_atoms(c, out.reached, start, p, task.task.uncertainty,
+                                                 std::max(0.0, stop_relative_speed), strong);
+  return out;
 }
 
 }  // namespace cmt

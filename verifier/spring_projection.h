@@ -26,6 +26,8 @@ struct SpringProjection {
   ReachedSet reached;              // every contact point reachable from the start (the start included)
   ReachedSet termination;          // reached points where sticking is possible (weak sticking configurations)
   bool may_not_terminate = false;  // no contact termination and no free-space rest
+  // Reached faces and edges where the motion may slide forever (verifier/slide_forever.h; a failure).
+  std::vector<int> slide_forever = {};
   bool fallback = false;           // the fixpoint cap was hit: every atom is reached (sound, uninformative)
   int steps = 0;                   // work items processed
   int widened = 0;                 // atoms widened (hull stage, kSpringWideningRounds)

@@ -5,6 +5,7 @@
 #include "verifier/atom_cone.h"
 #include "verifier/forward_projection.h"
 #include "verifier/sensing_termination.h"
+#include "verifier/slide_forever.h"
 #include "verifier/spring_projection.h"
 
 namespace cmt {
@@ -19,6 +20,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
         forward_project_spring(lt, start, motion.target, options.spring_model, options.stop_relative_speed);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
+    step.slide_forever = std::move(p.slide_forever);
     step.fallback = p.fallback;
     step.fixpoint_steps = p.steps;
     step.widened_atoms = p.widened;
@@ -32,6 +34,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
                                                 options.contact_lift);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
+    step.slide_forever = std::move(p.slide_forever);
     step.fallback = p.fallback;
     step.fixpoint_steps = p.steps;
     step.reached_area = p.reached.area();
@@ -104,6 +107,11 @@ class StrategyVerifier {
            "motion '" + motion->name + "' may never terminate: no reached atom can stick" +
                (motion->terminate.any() ? " and no reached point is consistent with its termination sets"
                                         : ""));
+      return;
+    }
+    if (!s.slide_forever.empty()) {
+      fail(index, "motion '" + motion->name + "' may slide forever on " + atom_list(lt_.cspace, s.slide_forever) +
+                      ": its velocity error can keep it sliding without progress, faster than the stop rule");
       return;
     }
     if (s.free_termination) {

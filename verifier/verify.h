@@ -42,6 +42,8 @@ struct VerifyStep {
   int parent = -1;  // index of the step before it in `steps`, -1 for the first
   int branch = -1;  // which branch of the parent's test leads here, -1 when it follows unconditionally
   bool may_not_terminate = false;  // no reached atom can stick
+  // Reached faces and edges where the motion may slide forever (verifier/slide_forever.h).
+  std::vector<int> slide_forever = {};
   bool fallback = false;           // the fixpoint fell back to "everything reached"
   int fixpoint_steps = 0;
   int widened_atoms = 0;    // spring: atoms widened (kSpringWideningRounds: hull, then whole)

@@ -1,0 +1,127 @@
+// Sliding forever (slide_forever.h; docs/verifier.md "Termination: sliding forever").
+#include "verifier/slide_forever.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace cmt {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Relative slack on zone radii and angles, on the sound side (a zone is only ever widened by it).
+constexpr double kZoneSlack = 1e-9;
+
+// A non-progressive slide of this speed bound (> 0; < 0: none) may reach the stop threshold.
+bool fast(double speed_per_unit, double ratio, double kappa) {
+  return speed_per_unit > 0 && speed_per_unit * ratio >= kappa * (1 - kZoneSlack);
+}
+
+double angle_between_unit(const Vec3& a, const Vec3& b) {
+  return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+}
+
+}  // namespace
+
+double face_nonprogressive_speed(double beta, double theta_v, double mu) {
+  if (beta > theta_v * (1 + kZoneSlack) + kZoneSlack) return -1;
+  const double psi = std::acos(std::clamp(std::cos(theta_v) / std::cos(std::min(beta, theta_v)), -1.0, 1.0));
+  const double phi = std::atan(mu);
+  if (psi * (1 + kZoneSlack) <= phi) return -1;  // every non-progressive velocity sticks
+  return std::sin(psi * (1 + kZoneSlack) - phi) / std::cos(phi);
+}
+
+double edge_nonprogressive_speed(double gamma, double theta_v, double mu_min) {
+  if (gamma > theta_v * (1 + kZoneSlack) + kZoneSlack) return -1;
+  const double phi = std::atan(mu_min);
+  if (theta_v * (1 + kZoneSlack) - gamma <= phi) return -1;
+  return std::sin(theta_v * (1 + kZoneSlack) - gamma - phi) / std::cos(phi);
+}
+
+double edge_min_friction(const CSpace& cspace, int edge_atom) {
+  const Edge& e = cspace.edges()[static_cast<std::size_t>(cspace.atom_index(edge_atom))];
+  if (e.faces.empty()) return 0;
+  double mu = std::numeric_limits<double>::infinity();
+  for (int f : e.faces) mu = std::min(mu, cspace.faces()[static_cast<std::size_t>(cspace.atom_index(f))].friction);
+  return mu;
+}
+
+std::vector<int> damper_slide_forever_atoms(const CSpace& cspace, const ReachedSet& reached, const Vec3& v,
+                                            double theta_v, double kappa, const std::vector<bool>& must_stick) {
+  std::vector<int> out;
+  const Vec3 u = v.normalized();
+  for (const Face& f : cspace.faces()) {
+    if (!reached.contains_atom(f.id) || must_stick[static_cast<std::size_t>(f.id)]) continue;
+    const double beta = angle_between_unit(u, -f.normal);
+    if (fast(face_nonprogressive_speed(beta, theta_v, f.friction), 1, kappa)) out.push_back(f.id);
+  }
+  for (const Edge& e : cspace.edges()) {
+    if (!reached.contains_atom(e.id) || must_stick[static_cast<std::size_t>(e.id)]) continue;
+    const Vec3 dir = (e.b - e.a).normalized();
+    const double gamma = std::asin(std::min(1.0, std::abs(u.dot(dir))));
+    if (fast(edge_nonprogressive_speed(gamma, theta_v, edge_min_friction(cspace, e.id)), 1, kappa))
+      out.push_back(e.id);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<int> spring_slide_forever_atoms(const CSpace& cspace, const ReachedSet& reached,
+                                            const ReachedSet& start, const Vec3& p, const Uncertainty& u,
+                                            double kappa, const std::vector<bool>& strong_atom) {
+  std::vector<int> out;
+  const double eps = u.eps_s, scale = cspace.scale();
+  const double tan_v = u.theta_v >= kPi / 2 ? std::numeric_limits<double>::infinity() : std::tan(u.theta_v);
+  // |p* − x0| over the start: a lower bound (0 when p* may be on the start).
+  const double d0 = std::max(0.0, start.distance(p) - eps);
+  auto ratio = [&](double w_max) {
+    if (d0 <= 0) return std::numeric_limits<double>::infinity();
+    return std::max(1.0, w_max / d0);
+  };
+  for (const Face& f : cspace.faces()) {
+    if (!reached.contains_atom(f.id)) continue;
+    const double h = f.offset - f.normal.dot(p);  // depth of p behind the plane
+    if (h + eps <= 0) continue;                   // every p* is in front: the pull leaves the face
+    const double speed = face_nonprogressive_speed(0, u.theta_v, f.friction);  // beta >= 0: the largest
+    const double radius = (std::max(0.0, h) + eps) * tan_v + eps;
+    const double w_max = std::hypot(h, radius) + eps;
+    if (!fast(speed, ratio(w_max), kappa)) continue;
+    std::vector<bool> keep(static_cast<std::size_t>(cspace.atom_count()), false);
+    keep[static_cast<std::size_t>(f.id)] = true;
+    const Vec3 foot = p + h * f.normal;
+    if (reached.restricted(keep).distance(foot) <= radius * (1 + kZoneSlack) + kZoneSlack * scale)
+      out.push_back(f.id);
+  }
+  for (const Edge& e : cspace.edges()) {
+    if (!reached.contains_atom(e.id) || strong_atom[static_cast<std::size_t>(e.id)]) continue;
+    const Vec3 d = e.b - e.a;
+    const double len = d.norm();
+    if (len == 0) continue;
+    const Vec3 dir = d / len;
+    const double s_p = (p - e.a).dot(dir);
+    const double rho = (p - e.a - s_p * dir).norm();
+    const double half = (rho + eps) * tan_v + eps;
+    const double speed = edge_nonprogressive_speed(0, u.theta_v, edge_min_friction(cspace, e.id));
+    if (!fast(speed, ratio(std::hypot(rho, half) + eps), kappa)) continue;
+    const double lo = (s_p - half) / len - kZoneSlack, hi = (s_p + half) / len + kZoneSlack;
+    for (const EdgeInterval& iv : reached.edge_intervals(e.id))
+      if (iv.t1 >= lo && iv.t0 <= hi) {
+        out.push_back(e.id);
+        break;
+      }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string atom_list(const CSpace& cspace, const std::vector<int>& atoms) {
+  std::string s;
+  for (int id : atoms) {
+    if (!s.empty()) s += ' ';
+    s += cspace.atom_name(id);
+  }
+  return s;
+}
+
+}  // namespace cmt
