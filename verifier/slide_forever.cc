@@ -18,9 +18,7 @@ bool fast(double speed_per_unit, double ratio, double kappa) {
   return speed_per_unit > 0 && speed_per_unit * ratio >= kappa * (1 - kZoneSlack);
 }
 
-double angle_between_unit(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
-}
+double angle_between_unit(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)); }
 
 }  // namespace
 
@@ -43,12 +41,14 @@ double edge_min_friction(const CSpace& cspace, int edge_atom) {
   const Edge& e = cspace.edges()[static_cast<std::size_t>(cspace.atom_index(edge_atom))];
   if (e.faces.empty()) return 0;
   double mu = std::numeric_limits<double>::infinity();
-  for (int f : e.faces) mu = std::min(mu, cspace.faces()[static_cast<std::size_t>(cspace.atom_index(f))].friction);
+  for (int f : e.faces)
+    mu = std::min(mu, cspace.faces()[static_cast<std::size_t>(cspace.atom_index(f))].friction);
   return mu;
 }
 
 std::vector<int> damper_slide_forever_atoms(const CSpace& cspace, const ReachedSet& reached, const Vec3& v,
-                                            double theta_v, double kappa, const std::vector<bool>& must_stick) {
+                                            double theta_v, double kappa,
+                                            const std::vector<bool>& must_stick) {
   std::vector<int> out;
   const Vec3 u = v.normalized();
   for (const Face& f : cspace.faces()) {

@@ -42,7 +42,8 @@ double edge_min_friction(const CSpace& cspace, int edge_atom);
 // `must_stick[atom]` (the damper's "must" class: every admissible velocity sticks) excludes an atom.
 // kappa: the stop rule's relative speed (VerifyOptions::stop_relative_speed; 0: Coulomb sticking only).
 std::vector<int> damper_slide_forever_atoms(const CSpace& cspace, const ReachedSet& reached, const Vec3& v,
-                                            double theta_v, double kappa, const std::vector<bool>& must_stick);
+                                            double theta_v, double kappa,
+                                            const std::vector<bool>& must_stick);
 
 // Spring toward p with the target error p* within eps_s of p, fixed during the motion. The zone of a face is
 // the disk about p's foot of radius (max(0, h) + eps_s) tan(theta_v) + eps_s (h: p's depth behind the plane),

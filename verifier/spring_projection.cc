@@ -740,7 +740,8 @@ SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet
   const CSpace& c = task.cspace;
   std::vector<bool> strong(static_cast<std::size_t>(c.atom_count()), false);
   for (int id = static_cast<int>(c.faces().size()); id < c.atom_count(); ++id)
-    strong[static_cast<std::size_t>(id)] = spring_sticking_regions(c, id, task.task.uncertainty).strongly_contains(p);
+    strong[static_cast<std::size_t>(id)] =
+        spring_sticking_regions(c, id, task.task.uncertainty).strongly_contains(p);
   out.slide_forever = spring_slide_forever_atoms(c, out.reached, start, p, task.task.uncertainty,
                                                  std::max(0.0, stop_relative_speed), strong);
   return out;

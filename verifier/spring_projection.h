@@ -28,9 +28,9 @@ struct SpringProjection {
   bool may_not_terminate = false;  // no contact termination and no free-space rest
   // Reached faces and edges where the motion may slide forever (verifier/slide_forever.h; a failure).
   std::vector<int> slide_forever = {};
-  bool fallback = false;           // the fixpoint cap was hit: every atom is reached (sound, uninformative)
-  int steps = 0;                   // work items processed
-  int widened = 0;                 // atoms widened (hull stage, kSpringWideningRounds)
+  bool fallback = false;  // the fixpoint cap was hit: every atom is reached (sound, uninformative)
+  int steps = 0;          // work items processed
+  int widened = 0;        // atoms widened (hull stage, kSpringWideningRounds)
   // The robot may come to rest in free space: the ball of radius free_radius about free_center (= p) meets
   // free space and the motion may leave contact.
   bool free_termination = false;

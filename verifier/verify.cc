@@ -110,7 +110,8 @@ class StrategyVerifier {
       return;
     }
     if (!s.slide_forever.empty()) {
-      fail(index, "motion '" + motion->name + "' may slide forever on " + atom_list(lt_.cspace, s.slide_forever) +
+      fail(index, "motion '" + motion->name + "' may slide forever on " +
+                      atom_list(lt_.cspace, s.slide_forever) +
                       ": its velocity error can keep it sliding without progress, faster than the stop rule");
       return;
     }

@@ -44,7 +44,7 @@ struct VerifyStep {
   bool may_not_terminate = false;  // no reached atom can stick
   // Reached faces and edges where the motion may slide forever (verifier/slide_forever.h).
   std::vector<int> slide_forever = {};
-  bool fallback = false;           // the fixpoint fell back to "everything reached"
+  bool fallback = false;  // the fixpoint fell back to "everything reached"
   int fixpoint_steps = 0;
   int widened_atoms = 0;    // spring: atoms widened (kSpringWideningRounds: hull, then whole)
   double reached_area = 0;  // area of the reached face regions (diagnostics)

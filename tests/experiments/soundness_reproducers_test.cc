@@ -76,9 +76,9 @@ TEST(SoundnessReproducers, ConvexCornerIsNotMustStick) {
 }
 
 // Termination: a spring pulled 1.7 mm into a mu .1 box top with theta_v .27 (> phi = .10) may be pushed back
-// and forth about the foot of its command by a switching velocity error and never stop (the campaign's seed 2,
-// task 106: rollout 20 slides about for the whole time-out). Unreliable, because it may slide forever; every
-// end that does occur is predicted, and physics shows the non-termination.
+// and forth about the foot of its command by a switching velocity error and never stop (the campaign's seed
+// 2, task 106: rollout 20 slides about for the whole time-out). Unreliable, because it may slide forever;
+// every end that does occur is predicted, and physics shows the non-termination.
 TEST(SoundnessReproducers, SwitchingErrorsCanKeepASpringSliding) {
   const ValidationResult r = validate_file("campaign2_106.yaml", "s", 30, 10905525725756348068ull);
   EXPECT_FALSE(r.prediction.reliable);

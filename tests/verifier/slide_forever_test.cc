@@ -1,5 +1,7 @@
 // Sliding forever (verifier/slide_forever.h): hand-checked speed bounds of non-progressive slides, and the
 // atoms a damper or a spring on a floor may slide about forever.
+#include "verifier/slide_forever.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 
 #include "tests/verifier/test_geometry.h"
 #include "verifier/forward_projection.h"
-#include "verifier/slide_forever.h"
 #include "verifier/verify.h"
 
 namespace cmt {
@@ -20,7 +21,8 @@ using test::face_at;
 std::string room(double mu, double theta_v, const std::string& start, const std::string& motion) {
   std::ostringstream s;
   s.precision(17);
-  s << "name: t\nunits: in\nfriction: " << mu << "\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: " << theta_v
+  s << "name: t\nunits: in\nfriction: " << mu
+    << "\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: " << theta_v
     << ", theta_f: 0.1, step: 0.1}\ncspace: []\nbounds: {min: [-5, -5, 0], max: [5, 5, 5]}\nstart: {point: "
     << start << "}\ngoal: {point: " << start << "}\nmotions:\n  m: " << motion << "\nstrategies:\n  s: [m]\n";
   return s.str();
@@ -29,9 +31,11 @@ std::string room(double mu, double theta_v, const std::string& start, const std:
 TEST(SlideForever, FaceSpeedBound) {
   // Straight at the face (beta 0): non-progressive velocities reach psi = theta_v; speed sin(theta_v − phi)
   // / cos(phi) with phi = atan(.1) = .0996687.
-  EXPECT_NEAR(face_nonprogressive_speed(0, 0.27, 0.1), std::sin(0.27 - 0.0996687) / std::cos(0.0996687), 1e-6);
+  EXPECT_NEAR(face_nonprogressive_speed(0, 0.27, 0.1), std::sin(0.27 - 0.0996687) / std::cos(0.0996687),
+              1e-6);
   // beta .2 < theta_v .3: psi = acos(cos .3 / cos .2) = .2248; phi = 0 gives sin(psi).
-  EXPECT_NEAR(face_nonprogressive_speed(0.2, 0.3, 0), std::sin(std::acos(std::cos(0.3) / std::cos(0.2))), 1e-6);
+  EXPECT_NEAR(face_nonprogressive_speed(0.2, 0.3, 0), std::sin(std::acos(std::cos(0.3) / std::cos(0.2))),
+              1e-6);
   EXPECT_LT(face_nonprogressive_speed(0.31, 0.3, 0), 0);  // beta > theta_v: every slide progresses
   EXPECT_LT(face_nonprogressive_speed(0, 0.2, 0.25), 0);  // theta_v < phi = .245: they stick
 }
@@ -57,7 +61,8 @@ TEST(SlideForever, DamperOnAFloor) {
   for (const Case& k : {Case{0.1, 0.3, 0.01, "[0, 0, -1]", true}, Case{0.25, 0.25, 0.01, "[0, 0, -1]", false},
                         Case{0.25, 0.25, 0, "[0, 0, -1]", true},
                         Case{0.1, 0.3, 0.01, "[0.479425538604203, 0, -0.8775825618903728]", false}}) {
-    const auto task = load_task_from_string(room(k.mu, k.theta_v, "[0, 0, 0]", "{damper: " + k.dir + "}"), "t");
+    const auto task =
+        load_task_from_string(room(k.mu, k.theta_v, "[0, 0, 0]", "{damper: " + k.dir + "}"), "t");
     const CSpace& c = task->cspace;
     const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
     ASSERT_GE(floor, 0);
@@ -65,7 +70,8 @@ TEST(SlideForever, DamperOnAFloor) {
     const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
     const DamperProjection p =
         forward_project_damper(*task, cones, start, task->task.motions[0].target, k.kappa, 0);
-    const bool on_floor = std::find(p.slide_forever.begin(), p.slide_forever.end(), floor) != p.slide_forever.end();
+    const bool on_floor =
+        std::find(p.slide_forever.begin(), p.slide_forever.end(), floor) != p.slide_forever.end();
     EXPECT_EQ(on_floor, k.forever) << "mu " << k.mu << " theta_v " << k.theta_v << " kappa " << k.kappa;
   }
 }
@@ -78,7 +84,8 @@ TEST(SlideForever, SpringZoneOnAFloor) {
     const auto task = load_task_from_string(room(mu, 0.3, "[3, 0, 0]", "{spring: [0, 0, -1]}"), "t");
     const CSpace& c = task->cspace;
     const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
-    const VerifyResult r = verify_strategy(*task, task->task.strategies[0], {SpringModel::kVelocity, 0.01, 0});
+    const VerifyResult r =
+        verify_strategy(*task, task->task.strategies[0], {SpringModel::kVelocity, 0.01, 0});
     ASSERT_FALSE(r.steps.empty());
     const auto& sf = r.steps[0].slide_forever;
     EXPECT_EQ(std::find(sf.begin(), sf.end(), floor) != sf.end(), mu < 0.3) << "mu " << mu;
