@@ -39,6 +39,8 @@ class SpringProjector {
         eps_t_(eps_t(u_)),
         eps_o_(eps_o(u_)),
         tan_v_(std::tan(u_.theta_v)),
+        start_(start),
+        kappa_(std::max(0.0, stop_relative_speed)),
         reached_(c_),
         r_(reached_.impl()) {
     if (model_ == SpringModel::kVelocity) {
@@ -134,6 +136,10 @@ class SpringProjector {
     out.free_center = p_;
     out.free_termination = flew_ && rest_ball_meets_free(out.free_radius);
     out.may_not_terminate = out.termination.empty() && !out.free_termination;
+    std::vector<bool> strong(static_cast<std::size_t>(c_.atom_count()), false);
+    for (std::size_t k = 0; k < strong_atom_.size(); ++k)
+      strong[static_cast<std::size_t>(nf_) + k] = strong_atom_[k];
+    out.slide_forever = spring_slide_forever_atoms(c_, reached_, start_, p_, u_, kappa_, strong);
     out.reached = std::move(reached_);
     out.steps = steps_;
     out.widened = widened_;
@@ -695,7 +701,9 @@ class SpringProjector {
   Vec3 p_;
   SpringModel model_;
   double eps_t_, eps_o_, tan_v_;
-  VelocitySpring vm_;  // the velocity model's shared data (kVelocity only)
+  VelocitySpring vm_;        // the velocity model's shared data (kVelocity only)
+  const ReachedSet& start_;  // alive during run() (forward_project_spring)
+  double kappa_;             // the stop rule's relative speed
   ReachedSet reached_;
   ReachedSet::Impl& r_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
@@ -736,15 +744,7 @@ const char* spring_model_name(SpringModel m) {
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model, double stop_relative_speed) {
-  SpringProjection out = SpringProjector(task, start, p, model, stop_relative_speed).run();
-  const CSpace& c = task.cspace;
-  std::vector<bool> strong(static_cast<std::size_t>(c.atom_count()), false);
-  for (int id = static_cast<int>(c.faces().size()); id < c.atom_count(); ++id)
-    strong[static_cast<std::size_t>(id)] =
-        spring_sticking_regions(c, id, task.task.uncertainty).strongly_contains(p);
-  out.slide_forever = spring_slide_forever_atoms(c, out.reached, start, p, task.task.uncertainty,
-                                                 std::max(0.0, stop_relative_speed), strong);
-  return out;
+  return SpringProjector(task, start, p, model, stop_relative_speed).run();
 }
 
 }  // namespace cmt
