@@ -20,7 +20,51 @@ bool fast(double speed_per_unit, double ratio, double kappa) {
 
 double angle_between_unit(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)); }
 
+// Unit vectors where the linear function g . v may peak on K = {unit v : v . u >= cos(theta_v), a_i . v <= 0}:
+// one candidate per set of active constraints (none; the cap's rim; a plane a_i . v = 0; the rim and a plane;
+// both planes, whose great circles meet in +-e).
+std::vector<Vec3> peak_candidates(const Vec3& g, const Vec3& u, double theta_v, const Vec3 a[2], const Vec3& e) {
+  std::vector<Vec3> c = {e, -e};
+  if (g.norm() > 0) c.push_back(g.normalized());
+  Vec3 t = g - g.dot(u) * u;  // toward g on the rim
+  if (t.norm() < 1e-12) t = u.unitOrthogonal();
+  c.push_back(std::cos(theta_v) * u + std::sin(theta_v) * t.normalized());
+  for (int i = 0; i < 2; ++i) {
+    if (a[i].norm() == 0) continue;
+    const Vec3 n = a[i].normalized();
+    const Vec3 g_p = g - g.dot(n) * n, u_p = u - u.dot(n) * n;
+    if (g_p.norm() > 0) c.push_back(g_p.normalized());
+    const double r = u_p.norm();
+    if (r <= 0 || r < std::cos(theta_v)) continue;
+    const double eta = std::acos(std::min(1.0, std::cos(theta_v) / r));
+    const Vec3 m = u_p / r, side = n.cross(m);
+    c.push_back(std::cos(eta) * m + std::sin(eta) * side);
+    c.push_back(std::cos(eta) * m - std::sin(eta) * side);
+  }
+  return c;
+}
+
 }  // namespace
+
+double edge_slide_speed(const Vec3& u, double theta_v, const Vec3& n1, double mu1, const Vec3& n2, double mu2,
+                        const Vec3& e) {
+  // N = G^-1 (−n_j . v) with G the Gram matrix of n1, n2: N_i = −a_i . v.
+  const double c = n1.dot(n2), det = 1 - c * c;
+  if (det < 1e-9) return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(e)))), theta_v,
+                                                   std::min(mu1, mu2));
+  const Vec3 a[2] = {(n1 - c * n2) / det, (n2 - c * n1) / det};
+  const double cos_v = std::cos(theta_v), tol = kZoneSlack;
+  double best = -std::numeric_limits<double>::infinity();
+  for (const double s : {1.0, -1.0}) {
+    if (s * u.dot(e) > tol) continue;  // sliding this way raises Phi = x . u: progressive
+    const Vec3 g = s * e + mu1 * a[0] + mu2 * a[1];
+    for (const Vec3& v : peak_candidates(g, u, theta_v, a, e))
+      if (v.dot(u) >= cos_v - tol && a[0].dot(v) <= tol && a[1].dot(v) <= tol) best = std::max(best, g.dot(v));
+  }
+  if (best == -std::numeric_limits<double>::infinity()) return -1;  // v_a never holds the robot on the edge
+  best += kZoneSlack;
+  return best > 0 ? best : -1;
+}
 
 double face_nonprogressive_speed(double beta, double theta_v, double mu) {
   if (beta > theta_v * (1 + kZoneSlack) + kZoneSlack) return -1;
@@ -46,6 +90,16 @@ double edge_min_friction(const CSpace& cspace, int edge_atom) {
   return mu;
 }
 
+double edge_slide_speed(const CSpace& cspace, const Edge& edge, const Vec3& u, double theta_v) {
+  const Vec3 dir = (edge.b - edge.a).normalized();
+  if (edge.faces.size() != 2)
+    return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(dir)))), theta_v,
+                                     edge_min_friction(cspace, edge.id));
+  const Face& f1 = cspace.faces()[static_cast<std::size_t>(cspace.atom_index(edge.faces[0]))];
+  const Face& f2 = cspace.faces()[static_cast<std::size_t>(cspace.atom_index(edge.faces[1]))];
+  return edge_slide_speed(u, theta_v, f1.normal, f1.friction, f2.normal, f2.friction, dir);
+}
+
 std::vector<int> damper_slide_forever_atoms(const CSpace& cspace, const ReachedSet& reached, const Vec3& v,
                                             double theta_v, double kappa,
                                             const std::vector<bool>& must_stick) {
@@ -58,10 +112,7 @@ std::vector<int> damper_slide_forever_atoms(const CSpace& cspace, const ReachedS
   }
   for (const Edge& e : cspace.edges()) {
     if (!reached.contains_atom(e.id) || must_stick[static_cast<std::size_t>(e.id)]) continue;
-    const Vec3 dir = (e.b - e.a).normalized();
-    const double gamma = std::asin(std::min(1.0, std::abs(u.dot(dir))));
-    if (fast(edge_nonprogressive_speed(gamma, theta_v, edge_min_friction(cspace, e.id)), 1, kappa))
-      out.push_back(e.id);
+    if (fast(edge_slide_speed(cspace, e, u, theta_v), 1, kappa)) out.push_back(e.id);
   }
   std::sort(out.begin(), out.end());
   return out;

@@ -19,6 +19,11 @@
 //     |v_a . e| <= sin(theta_v − gamma); the normal reactions N_i (N_1 n_1 + N_2 n_2 = −v_a's part normal to
 //     e) sum to at least that part's length, so the speed is <= sin(theta_v − gamma − phi_min) / cos(phi_min)
 //     (phi_min: the least friction angle of the edge's faces); a convex edge's single contact gives the same.
+//   a damper on an edge with two faces (u = v fixed) gets the exact bound: sliding along s e, the reactions
+//     N_i >= 0 balance v_a's part normal to e (N_1 n_1 + N_2 n_2 = −v_a's part; for a convex edge as for a
+//     concave one) and friction mu_1 N_1 + mu_2 N_2 opposes the slide, so the speed is s v_a . e − sum mu_i
+//     N_i, linear in v_a: its largest value over the v_a within theta_v of u that keep every N_i >= 0 (none:
+//     the robot leaves the edge) is found among the peaks of a linear function on that spherical region.
 // Vertices do not slide. A motion may slide forever iff a reached face or edge holds a point where a
 // non-progressive slide may be at least the stop threshold fast.
 #pragma once
@@ -34,6 +39,14 @@ namespace cmt {
 // Speed bounds of non-progressive slides per unit |v_a|, as above; < 0 when there are none (or all stick).
 double face_nonprogressive_speed(double beta, double theta_v, double mu);
 double edge_nonprogressive_speed(double gamma, double theta_v, double mu_min);
+
+// The exact damper edge bound above, per unit |v_a|, for an edge with unit direction e and faces (n1, mu1),
+// (n2, mu2) (normals orthogonal to e), raised by 1e-9 on the sound side; < 0 when no non-progressive
+// slide exists. Nearly parallel normals (a flat edge) fall back to edge_nonprogressive_speed.
+double edge_slide_speed(const Vec3& u, double theta_v, const Vec3& n1, double mu1, const Vec3& n2, double mu2,
+                        const Vec3& e);
+// The same for a C-space edge (edge_nonprogressive_speed unless it has exactly two faces).
+double edge_slide_speed(const CSpace& cspace, const Edge& edge, const Vec3& u, double theta_v);
 
 // The least friction coefficient of an edge's faces (0 for an edge without faces).
 double edge_min_friction(const CSpace& cspace, int edge_atom);

@@ -113,7 +113,7 @@ class StrategyVerifier {
       fail(index, "motion '" + motion->name + "' may slide forever on " +
                       atom_list(lt_.cspace, s.slide_forever) +
                       ": its velocity error can keep it sliding without progress, faster than the stop rule");
-      return;
+      // Where it stops when it does is still predicted: the later steps are simulated for the report.
     }
     if (s.free_termination) {
       // Goals are contact regions, and a motion from a free-space rest is not simulated: a failure either

@@ -3,6 +3,7 @@
 // (the two blocks of Buckley Fig 4.1 in the plane), derived by hand in the task file's comments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "models/loaded_task.h"
@@ -61,7 +62,9 @@ TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
   EXPECT_EQ(slide.steps[0].termination.atoms(), std::vector<int>{edge_over(c, -1.5, 0)});
   EXPECT_EQ(slide.steps[0].termination.area(), 0.0);
 
-  const VerifyResult down = verify_strategy(*lt, *lt->task.find_strategy("down"));
+  const Strategy& down_strategy = *lt->task.find_strategy("down");
+  const VerifyResult down =
+      verify_strategy(*lt, down_strategy, {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
   EXPECT_FALSE(down.reliable);
   // theta_v > phi: v1 may stick on B's top (the start is there) and, sliding off either side, on the floor
   // of the gap and right of B, never on A's top (z = 2 is out of reach from x >= 1.5 - 3 tan(.25) > -1.5).
@@ -75,6 +78,15 @@ TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
   bool right_floor_outside = false;
   for (const ReachedPiece& p : down.outside_goal) right_floor_outside |= p.atom == right;
   EXPECT_TRUE(right_floor_outside);
+  // With Coulomb sticking only, v1 (theta_v .25 > phi .245 about B's top normal) may slide forever at up to
+  // .005 V on B's top; slide's v2 holds in the corner (A's right wall +x, floor +z: every N_i > 0 and friction
+  // wins), so slide stays reliable.
+  const VerifyResult coulomb = verify_strategy(*lt, down_strategy);
+  EXPECT_FALSE(coulomb.reliable);
+  EXPECT_NE(coulomb.failure.find("may slide forever on"), std::string::npos) << coulomb.failure;
+  ASSERT_FALSE(coulomb.steps.empty());
+  EXPECT_NE(std::find(coulomb.steps[0].slide_forever.begin(), coulomb.steps[0].slide_forever.end(), top_b),
+            coulomb.steps[0].slide_forever.end());
 }
 
 }  // namespace

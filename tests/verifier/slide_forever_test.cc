@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -45,6 +47,78 @@ TEST(SlideForever, EdgeSpeedBound) {
   EXPECT_NEAR(edge_nonprogressive_speed(0, 0.3, 0.1), std::sin(0.3 - 0.0996687) / std::cos(0.0996687), 1e-6);
   EXPECT_LT(edge_nonprogressive_speed(0.35, 0.3, 0), 0);
   EXPECT_LT(edge_nonprogressive_speed(0.1, 0.3, 0.25), 0);  // .2 < phi .245
+}
+
+// The exact damper edge bound by hand: into a square concave corner (floor +z, wall +x) at 45 degrees, a
+// v_a turned d along the edge and a' about it slides at sin d − mu sqrt(2) cos d cos a', largest at d =
+// theta_v, a' = 0: sin .3 − .1 sqrt(2) cos .3 = .1604 (the face-count bound gives .2000).
+TEST(SlideForever, ExactEdgeBoundByHand) {
+  const Vec3 floor = Vec3::UnitZ(), wall = Vec3::UnitX(), e = Vec3::UnitY();
+  const Vec3 into_corner = Vec3(-1, 0, -1).normalized();
+  EXPECT_NEAR(edge_slide_speed(into_corner, 0.3, floor, 0.1, wall, 0.1, e),
+              std::sin(0.3) - 0.1 * std::sqrt(2.0) * std::cos(0.3), 1e-8);
+  // two_blocks v3 (down, tilted .29 left) in A's right corner: mu .25 holds it, though the face-count bound
+  // sin(.25 − .245) / cos(.245) = .005 does not.
+  EXPECT_LT(edge_slide_speed(Vec3(-0.3, 0, -1).normalized(), 0.25, floor, 0.25, wall, 0.25, e), 0);
+  EXPECT_GT(edge_nonprogressive_speed(0, 0.25, 0.25), 0);
+  // two_blocks v2 (down-left 45 degrees) at B's top-left convex edge (top +z, wall −x) and at its foot
+  // (floor +z, wall −x): every v_a leaves the edge.
+  EXPECT_LT(edge_slide_speed(into_corner, 0.25, floor, 0, -wall, 0, e), 0);
+  // Tilted along the edge by .1: only the slide against the tilt is non-progressive, sin(.3 − .1) with mu 0.
+  const Vec3 tilted = (std::cos(0.1) * into_corner + std::sin(0.1) * e).normalized();
+  EXPECT_NEAR(edge_slide_speed(tilted, 0.3, floor, 0, wall, 0, e), std::sin(0.2), 1e-8);
+}
+
+// Against brute force: the exact bound is at least every sampled admissible v_a's slide speed (sound) and
+// within 1e-3 of the best sample (tight), and never above the face-count bound.
+TEST(SlideForever, ExactEdgeBoundAgainstSampling) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1), angle(0.1, 0.6), friction(0, 0.25);
+  auto random_unit = [&] { return Vec3(unit(rng), unit(rng), unit(rng)).normalized(); };
+  const Vec3 e = Vec3::UnitY();
+  int compared = 0, leaving = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double a1 = 3.14159 * unit(rng), a2 = a1 + (0.3 + 2.5 * (unit(rng) + 1) / 2) * (unit(rng) < 0 ? -1 : 1);
+    const Vec3 n1(std::cos(a1), 0, std::sin(a1)), n2(std::cos(a2), 0, std::sin(a2));
+    const double mu1 = friction(rng), mu2 = friction(rng), theta_v = angle(rng);
+    // Commands about W's directions, some pointing out of it.
+    const double mix = 0.5 + 0.7 * unit(rng);
+    const Vec3 u = (-(mix * n1 + (1 - mix) * n2).normalized() + 0.4 * unit(rng) * e).normalized();
+    const double exact = edge_slide_speed(u, theta_v, n1, mu1, n2, mu2, e);
+    const double c = n1.dot(n2), det = 1 - c * c;
+    // Samples in the cap, on its rim and on the planes N_i = 0 (where the peaks lie).
+    const Vec3 a[2] = {(n1 - c * n2).normalized(), (n2 - c * n1).normalized()};
+    double sampled = -1;
+    for (int k = 0; k < 30000; ++k) {
+      const Vec3 w = random_unit();
+      const Vec3 side = (w - w.dot(u) * u).normalized();
+      const double d = k % 3 == 1 ? theta_v : theta_v * std::sqrt((unit(rng) + 1) / 2);
+      Vec3 v = std::cos(d) * u + std::sin(d) * side;
+      if (k % 3 == 2) {
+        const Vec3& plane = a[k % 2];
+        v = (v - v.dot(plane) * plane).normalized();
+        if (v.dot(u) < std::cos(theta_v)) continue;
+      }
+      const double b1 = -n1.dot(v), b2 = -n2.dot(v);
+      const double N1 = (b1 - c * b2) / det, N2 = (b2 - c * b1) / det;
+      if (N1 < -1e-12 || N2 < -1e-12) continue;
+      const double along = v.dot(e);
+      if (along * u.dot(e) > 0) continue;  // progressive
+      sampled = std::max(sampled, std::abs(along) - mu1 * std::max(0.0, N1) - mu2 * std::max(0.0, N2));
+    }
+    compared += sampled > 0;
+    leaving += exact < 0;
+    if (sampled > 0) {
+      EXPECT_GE(exact, sampled) << trial;
+      EXPECT_LE(exact, sampled + 1e-3) << trial;
+    }
+    const double gamma = std::asin(std::min(1.0, std::abs(u.dot(e))));
+    if (exact > 0) {
+      EXPECT_LE(exact, edge_nonprogressive_speed(gamma, theta_v, std::min(mu1, mu2)) + 1e-9);
+    }
+  }
+  EXPECT_GT(compared, 40);  // both kinds of case occur
+  EXPECT_GT(leaving, 10);
 }
 
 // A damper straight down on the floor: theta_v .3 > phi = atan .1 slides about in every direction at .2 V,

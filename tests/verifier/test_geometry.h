@@ -5,6 +5,13 @@
 
 namespace cmt::test {
 
+// The rollouts' stop rule (controllers/termination.h kStopRelativeSpeed, which the verifier's tests do not
+// link): a robot sliding slower than 1 % of its reference speed counts as stopped. With it a verdict is the
+// one `cmt verify` gives; with kappa 0 (Coulomb sticking only) a motion whose velocity error may keep it
+// sliding slowly without progress is not proved to terminate (docs/verifier.md "Termination: sliding
+// forever").
+inline constexpr double kRolloutStopRelativeSpeed = 0.01;
+
 // The face whose outward normal is `normal` and whose closure contains p, or -1.
 inline int face_at(const CSpace& c, const Vec3& normal, const Vec3& p) {
   for (const Face& f : c.faces())
