@@ -93,12 +93,41 @@ Points2 clip(const Points2& convex, const HalfPlane2& h) {
   return convex_hull(out);
 }
 
+// Two convex polygons meet in the hull of the vertices of each inside the other and the crossings of their
+// edges. Each of those points is the input or one construction from it, whereas clipping by one edge line
+// after another builds every round's crossings from the last round's, so that the lazy-exact expressions
+// (and the exact evaluations the predicates on them fall back to) deepen with every round.
 Points2 clip(const Points2& convex, const Points2& convex_clip) {
-  Points2 out = convex;
-  const std::size_t n = convex_clip.size();
-  for (std::size_t i = 0; i < n && !out.empty(); ++i)
-    out = clip(out, left_of(convex_clip[i], convex_clip[(i + 1) % n]));
-  return out;
+  if (convex.empty() || convex_clip.empty()) return {};
+  if (convex.size() < 3 || convex_clip.size() < 3) {
+    Points2 out = convex;
+    const std::size_t n = convex_clip.size();
+    for (std::size_t i = 0; i < n && !out.empty(); ++i)
+      out = clip(out, left_of(convex_clip[i], convex_clip[(i + 1) % n]));
+    return out;
+  }
+  Points2 candidates;
+  for (const Point2& p : convex)
+    if (inside_closed(convex_clip, p)) candidates.push_back(p);
+  for (const Point2& p : convex_clip)
+    if (inside_closed(convex, p)) candidates.push_back(p);
+  const std::size_t n = convex.size(), m = convex_clip.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Segment2 a(convex[i], convex[(i + 1) % n]);
+    for (std::size_t j = 0; j < m; ++j) {
+      const Segment2 b(convex_clip[j], convex_clip[(j + 1) % m]);
+      if (!CGAL::do_intersect(a, b)) continue;
+      const auto x = CGAL::intersection(a, b);
+      if (!x) continue;
+      if (const Point2* p = boost::get<Point2>(&*x)) {
+        candidates.push_back(*p);
+      } else if (const Segment2* s = boost::get<Segment2>(&*x)) {
+        candidates.push_back(s->source());
+        candidates.push_back(s->target());
+      }
+    }
+  }
+  return convex_hull(candidates);
 }
 
 bool inside_closed(const Points2& convex, const Point2& p) {

@@ -20,10 +20,11 @@ bool fast(double speed_per_unit, double ratio, double kappa) {
 
 double angle_between_unit(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)); }
 
-// Unit vectors where the linear function g . v may peak on K = {unit v : v . u >= cos(theta_v), a_i . v <= 0}:
-// one candidate per set of active constraints (none; the cap's rim; a plane a_i . v = 0; the rim and a plane;
-// both planes, whose great circles meet in +-e).
-std::vector<Vec3> peak_candidates(const Vec3& g, const Vec3& u, double theta_v, const Vec3 a[2], const Vec3& e) {
+// Unit vectors where the linear function g . v may peak on K = {unit v : v . u >= cos(theta_v), a_i . v <=
+// 0}: one candidate per set of active constraints (none; the cap's rim; a plane a_i . v = 0; the rim and a
+// plane; both planes, whose great circles meet in +-e).
+std::vector<Vec3> peak_candidates(const Vec3& g, const Vec3& u, double theta_v, const Vec3 a[2],
+                                  const Vec3& e) {
   std::vector<Vec3> c = {e, -e};
   if (g.norm() > 0) c.push_back(g.normalized());
   Vec3 t = g - g.dot(u) * u;  // toward g on the rim
@@ -50,8 +51,9 @@ double edge_slide_speed(const Vec3& u, double theta_v, const Vec3& n1, double mu
                         const Vec3& e) {
   // N = G^-1 (−n_j . v) with G the Gram matrix of n1, n2: N_i = −a_i . v.
   const double c = n1.dot(n2), det = 1 - c * c;
-  if (det < 1e-9) return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(e)))), theta_v,
-                                                   std::min(mu1, mu2));
+  if (det < 1e-9)
+    return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(e)))), theta_v,
+                                     std::min(mu1, mu2));
   const Vec3 a[2] = {(n1 - c * n2) / det, (n2 - c * n1) / det};
   const double cos_v = std::cos(theta_v), tol = kZoneSlack;
   double best = -std::numeric_limits<double>::infinity();
@@ -59,7 +61,8 @@ double edge_slide_speed(const Vec3& u, double theta_v, const Vec3& n1, double mu
     if (s * u.dot(e) > tol) continue;  // sliding this way raises Phi = x . u: progressive
     const Vec3 g = s * e + mu1 * a[0] + mu2 * a[1];
     for (const Vec3& v : peak_candidates(g, u, theta_v, a, e))
-      if (v.dot(u) >= cos_v - tol && a[0].dot(v) <= tol && a[1].dot(v) <= tol) best = std::max(best, g.dot(v));
+      if (v.dot(u) >= cos_v - tol && a[0].dot(v) <= tol && a[1].dot(v) <= tol)
+        best = std::max(best, g.dot(v));
   }
   if (best == -std::numeric_limits<double>::infinity()) return -1;  // v_a never holds the robot on the edge
   best += kZoneSlack;

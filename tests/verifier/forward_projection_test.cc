@@ -170,8 +170,8 @@ TEST(TwoBlocks, DownIsUnreliable) {
   // floor; from the right edge it reaches the right floor x in [4.5, 6]. A's top (z = 2, x <= -1.5) is out
   // of reach: from the gap floor nothing lifts off (v.n = -1), and A's right wall only slides down.
   const LoadedTask& t = two_blocks();
-  const VerifyResult r =
-      verify_strategy(t, *t.task.find_strategy("down"), {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
+  const VerifyResult r = verify_strategy(t, *t.task.find_strategy("down"),
+                                         {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
   EXPECT_FALSE(r.reliable);
   ASSERT_EQ(r.steps.size(), 1u);
   const ReachedSet& term = r.steps[0].termination;
@@ -221,8 +221,8 @@ TEST(Verify, CubeSpringStickIsReliable) {
   // floor-wall edges lie in the closed goal (the floor); p is 2 > max(eps_p, eps_s) from free space: no free
   // rest. Reliable.
   const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
-  const VerifyResult r =
-      verify_strategy(*t, *t->task.find_strategy("stick"), {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
+  const VerifyResult r = verify_strategy(*t, *t->task.find_strategy("stick"),
+                                         {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
   EXPECT_TRUE(r.reliable) << r.failure;
   ASSERT_EQ(r.steps.size(), 1u);
   EXPECT_FALSE(r.steps[0].free_termination);

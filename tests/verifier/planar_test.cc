@@ -79,8 +79,8 @@ TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
   for (const ReachedPiece& p : down.outside_goal) right_floor_outside |= p.atom == right;
   EXPECT_TRUE(right_floor_outside);
   // With Coulomb sticking only, v1 (theta_v .25 > phi .245 about B's top normal) may slide forever at up to
-  // .005 V on B's top; slide's v2 holds in the corner (A's right wall +x, floor +z: every N_i > 0 and friction
-  // wins), so slide stays reliable.
+  // .005 V on B's top; slide's v2 holds in the corner (A's right wall +x, floor +z: every N_i > 0 and
+  // friction wins), so slide stays reliable.
   const VerifyResult coulomb = verify_strategy(*lt, down_strategy);
   EXPECT_FALSE(coulomb.reliable);
   EXPECT_NE(coulomb.failure.find("may slide forever on"), std::string::npos) << coulomb.failure;

@@ -78,7 +78,8 @@ TEST(SlideForever, ExactEdgeBoundAgainstSampling) {
   const Vec3 e = Vec3::UnitY();
   int compared = 0, leaving = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const double a1 = 3.14159 * unit(rng), a2 = a1 + (0.3 + 2.5 * (unit(rng) + 1) / 2) * (unit(rng) < 0 ? -1 : 1);
+    const double a1 = 3.14159 * unit(rng),
+                 a2 = a1 + (0.3 + 2.5 * (unit(rng) + 1) / 2) * (unit(rng) < 0 ? -1 : 1);
     const Vec3 n1(std::cos(a1), 0, std::sin(a1)), n2(std::cos(a2), 0, std::sin(a2));
     const double mu1 = friction(rng), mu2 = friction(rng), theta_v = angle(rng);
     // Commands about W's directions, some pointing out of it.
