@@ -97,6 +97,19 @@ void BM_VerifyCubeStick(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(cmt::verify_strategy(cube(), *cube().task.find_strategy("stick"), {model}));
 }
+const cmt::LoadedTask& tslot() {
+  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/tslot.yaml");
+  return *task;
+}
+void BM_BuildCSpaceTslot(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(tslot().task));
+}
+// tslot `insert` under the velocity model (as `cmt verify` runs it), the slowest built-in verification.
+void BM_VerifyTslotInsert(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::verify_strategy(tslot(), *tslot().task.find_strategy("insert"),
+                                                  {cmt::SpringModel::kVelocity, 0.01}));
+}
 void BM_VerifyTwoBlocksProbe(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(cmt::verify_strategy(two_blocks(), *two_blocks().task.find_strategy("probe")));
@@ -115,4 +128,6 @@ BENCHMARK(BM_VerifyHoleTeachVelocity)->Unit(benchmark::kMillisecond)->Iterations
 BENCHMARK(BM_BuildCSpaceCube)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VerifyCubeStick)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_VerifyTwoBlocksProbe)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BuildCSpaceTslot)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VerifyTslotInsert)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_MAIN();

@@ -409,16 +409,19 @@ class SpringProjector {
       std::vector<Points2> sources = convex_pieces(entry);
       for (const Points2& l : lower)
         if (!sticks_strongly(fi, l)) sources.push_back(l);
-      PolygonSet2 slid_all;
+      // The slides are united in one aggregated join (a single sweep) rather than one overlay per source.
+      std::vector<PolygonWithHoles2> slid_parts;
       for (const Points2& src : sources) {
         if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
         Points2 lower_out;
         PolygonSet2 slid = velocity_slide(r_, fi, src, vm_, &lower_out);
         if (!slid.is_empty())
-          slid_all.join(slid);
+          slid.polygons_with_holes(std::back_inserter(slid_parts));
         else if (!lower_out.empty())
           add_reached_lower(fi, lower_out);
       }
+      PolygonSet2 slid_all;
+      if (!slid_parts.empty()) slid_all.join(slid_parts.begin(), slid_parts.end());
       if (!slid_all.is_empty()) {
         slid_all.difference(no_slide_[fi]);
         add_reached_region(fi, slid_all);
