@@ -6,7 +6,9 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <memory>
 #include <sstream>
+#include <string>
 
 #include "models/loaded_task.h"
 #include "verifier/atom_cone.h"
@@ -15,10 +17,14 @@
 
 namespace {
 
-const cmt::LoadedTask& two_blocks() {
-  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/two_blocks.yaml");
-  return *task;
+// A built-in task (models/tasks/NAME.yaml), loaded once.
+const cmt::LoadedTask& builtin(const std::string& name) {
+  static std::map<std::string, std::shared_ptr<const cmt::LoadedTask>> cache;
+  auto& t = cache[name];
+  if (!t) t = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/" + name + ".yaml");
+  return *t;
 }
+const cmt::LoadedTask& two_blocks() { return builtin("two_blocks"); }
 
 // Boxes of height 1 + (i + j) % 3 on a 2k+1 wide floor, 1 apart; the start is the top of box (0, 0); the
 // motion slides down-left (v2 of two_blocks), mu = .25, theta_v = .25.
@@ -67,10 +73,7 @@ void BM_ProjectGrid(benchmark::State& state) {
   project(state, t, t.task.motions[0].target);
 }
 
-const cmt::LoadedTask& hole() {
-  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole.yaml");
-  return *task;
-}
+const cmt::LoadedTask& hole() { return builtin("hole"); }
 void BM_BuildCSpaceHole(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(hole().task));
 }
@@ -85,10 +88,7 @@ void BM_VerifyHoleTeachVelocity(benchmark::State& state) {
     benchmark::DoNotOptimize(
         cmt::verify_strategy(hole(), *hole().task.find_strategy("teach"), {cmt::SpringModel::kVelocity}));
 }
-const cmt::LoadedTask& cube() {
-  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
-  return *task;
-}
+const cmt::LoadedTask& cube() { return builtin("cube"); }
 void BM_BuildCSpaceCube(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(cube().task));
 }
@@ -97,10 +97,7 @@ void BM_VerifyCubeStick(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(cmt::verify_strategy(cube(), *cube().task.find_strategy("stick"), {model}));
 }
-const cmt::LoadedTask& tslot() {
-  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/tslot.yaml");
-  return *task;
-}
+const cmt::LoadedTask& tslot() { return builtin("tslot"); }
 void BM_BuildCSpaceTslot(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(cmt::CSpace::build(tslot().task));
 }

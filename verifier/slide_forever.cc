@@ -20,6 +20,9 @@ bool fast(double speed_per_unit, double ratio, double kappa) {
 
 double angle_between_unit(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)); }
 
+// gamma = asin(|u . e|): the angle between unit u and the plane normal to the unit edge direction e.
+double edge_gamma(const Vec3& u, const Vec3& e) { return std::asin(std::min(1.0, std::abs(u.dot(e)))); }
+
 // Unit vectors where the linear function g . v may peak on K = {unit v : v . u >= cos(theta_v), a_i . v <=
 // 0}: one candidate per set of active constraints (none; the cap's rim; a plane a_i . v = 0; the rim and a
 // plane; both planes, whose great circles meet in +-e).
@@ -51,9 +54,7 @@ double edge_slide_speed(const Vec3& u, double theta_v, const Vec3& n1, double mu
                         const Vec3& e) {
   // N = G^-1 (−n_j . v) with G the Gram matrix of n1, n2: N_i = −a_i . v.
   const double c = n1.dot(n2), det = 1 - c * c;
-  if (det < 1e-9)
-    return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(e)))), theta_v,
-                                     std::min(mu1, mu2));
+  if (det < 1e-9) return edge_nonprogressive_speed(edge_gamma(u, e), theta_v, std::min(mu1, mu2));
   const Vec3 a[2] = {(n1 - c * n2) / det, (n2 - c * n1) / det};
   const double cos_v = std::cos(theta_v), tol = kZoneSlack;
   double best = -std::numeric_limits<double>::infinity();
@@ -96,8 +97,7 @@ double edge_min_friction(const CSpace& cspace, int edge_atom) {
 double edge_slide_speed(const CSpace& cspace, const Edge& edge, const Vec3& u, double theta_v) {
   const Vec3 dir = (edge.b - edge.a).normalized();
   if (edge.faces.size() != 2)
-    return edge_nonprogressive_speed(std::asin(std::min(1.0, std::abs(u.dot(dir)))), theta_v,
-                                     edge_min_friction(cspace, edge.id));
+    return edge_nonprogressive_speed(edge_gamma(u, dir), theta_v, edge_min_friction(cspace, edge.id));
   const Face& f1 = cspace.faces()[static_cast<std::size_t>(cspace.atom_index(edge.faces[0]))];
   const Face& f2 = cspace.faces()[static_cast<std::size_t>(cspace.atom_index(edge.faces[1]))];
   return edge_slide_speed(u, theta_v, f1.normal, f1.friction, f2.normal, f2.friction, dir);

@@ -292,8 +292,8 @@ TEST(SpringVelocity, VertexStickingUsesTheForceConeNotWidenedGenerators) {
   EXPECT_TRUE(into.termination.has_vertex(vertex));
 }
 
-// With the rollouts' stop rule (kappa .01): under Coulomb sticking alone (kappa 0) a slow non-progressive slide
-// never ends, so termination is not proved (docs/verifier.md "Termination: sliding forever").
+// With the rollouts' stop rule (kappa .01): under Coulomb sticking alone (kappa 0) a slow non-progressive
+// slide never ends, so termination is not proved (docs/verifier.md "Termination: sliding forever").
 TEST(SpringVelocity, CubeStickIsReliableUnderTheVelocityModel) {
   auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
   const VerifyResult r =
