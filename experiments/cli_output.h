@@ -6,6 +6,7 @@
 #include <string>
 
 #include "models/task.h"
+#include "models/task_error.h"
 
 namespace cmt {
 
@@ -19,8 +20,9 @@ nlohmann::json point_json(const Vec3& p, int dimension);
 // Prints the object (pretty) followed by a newline.
 void print_json(const nlohmann::json& object);
 
-// Reports a bad-input error: on stderr always; with --json also as {"error": {...}} on stdout. Returns 2.
+// Reports a bad-input error: on stderr always; with --json also as {"error": {message, file, key, reason,
+// line, column}} on stdout (each field only when known; line and column for YAML syntax errors). Returns 2.
 int report_bad_input(const std::string& message, bool json, const std::string& file = "",
-                     const std::string& key = "", const std::string& reason = "");
+                     const std::string& key = "", const std::string& reason = "", TextLocation where = {});
 
 }  // namespace cmt

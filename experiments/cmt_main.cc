@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return cmt::report_bad_input(std::string("usage: ") + e.what() + " (see cmt --help)", wants_json);
   } catch (const cmt::TaskError& e) {
-    return cmt::report_bad_input(e.what(), wants_json, e.file(), e.key(), e.reason());
+    return cmt::report_bad_input(e.what(), wants_json, e.file(), e.key(), e.reason(), e.where());
   } catch (const std::exception& e) {
     // Anything else is an I/O failure on the user's paths or a bug: still no crash, and the message says
     // which.

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "experiments/results_store.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -28,7 +29,7 @@ std::string quote(const std::string& field) {
 std::string field(const SqliteStatement& st, int col) {
   if (st.is_null(col)) return "";
   if (st.is_integer(col)) return std::to_string(st.integer(col));
-  if (st.is_real(col)) return nlohmann::json(st.real(col)).dump();  // shortest text that reads back exactly
+  if (st.is_real(col)) return json_text(nlohmann::json(st.real(col)));  // shortest text that reads back exactly
   return quote(st.text(col));
 }
 
@@ -111,7 +112,7 @@ void write_summary(SqliteDb& db, const std::filesystem::path& path) {
       }
       const auto params = nlohmann::json::parse(st.text(c));
       for (const std::string& k : keys)
-        fields.push_back(params.contains(k) ? quote(params[k].dump()) : "");  // a vector as "[x,y,z]"
+        fields.push_back(params.contains(k) ? quote(json_text(params[k])) : "");  // a vector as "[x,y,z]"
     }
     csv.row(fields);
   }

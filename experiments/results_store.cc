@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "experiments/results_schema.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -66,7 +67,7 @@ void ResultsStore::register_units(std::int64_t run_id, const std::vector<SweepUn
         .bind(4, u.task_file)
         .bind(5, u.task_yaml)
         .bind(6, u.strategy)
-        .bind(7, u.params.dump())
+        .bind(7, json_text(u.params))
         .bind(8, u.n)
         .bind(9, static_cast<std::int64_t>(u.seed))
         .bind(10, sample_mode_name(u.mode))

@@ -13,6 +13,7 @@
 #include "experiments/validation.h"
 #include "experiments/verifier_budget.h"
 #include "models/task_error.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 namespace {
@@ -235,7 +236,7 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
         j["max_distance_outside"] = r.worst.empty() ? 0.0 : r.worst.front().distance;
         j["verify_seconds"] = r.verify_seconds;
         j["seed"] = o.seed;
-        return j.dump();
+        return json_text(j);
       });
   if (run.timed_out) {
     rec.status = "timed-out";
@@ -382,7 +383,7 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       nlohmann::json line = campaign_record_json(rec);
       line["seed"] = options.seed;
       line["n"] = options.rollouts;
-      log << line.dump() << "\n" << std::flush;
+      log << json_text(line) << "\n" << std::flush;
     }
     ++sum.run;
     if (rec.status == "sound") ++sum.sound;

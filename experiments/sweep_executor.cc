@@ -7,6 +7,7 @@
 #include "experiments/unit_record_json.h"
 #include "experiments/verifier_budget.h"
 #include "experiments/verify_command.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -21,9 +22,9 @@ UnitRecord unit_record(const LoadedTask& task, const ValidationResult& v) {
   r.reliable = v.prediction.reliable;
   r.failure = v.prediction.failure;
   r.verify_seconds = v.verify_seconds;
-  r.verify_json = verify_json(task, v.prediction, v.verify_seconds).dump();
+  r.verify_json = json_text(verify_json(task, v.prediction, v.verify_seconds));
   r.verifier_theta_v = v.verifier.theta_v;
-  r.verifier_model = verifier_model_json(v.verifier).dump();
+  r.verifier_model = json_text(verifier_model_json(v.verifier));
 
   std::map<std::pair<int, int>, const ObservedEnd*> ends;
   for (const ObservedEnd& e : v.ends) ends[{e.rollout, e.motion}] = &e;
@@ -68,8 +69,8 @@ UnitRecord unit_record(const LoadedTask& task, const ValidationResult& v) {
   r.coverage_radius = v.coverage_radius;
   r.contact_tolerance = v.contact_tolerance;
   r.soundness_bug = v.soundness_bug;
-  if (v.counterexample) r.counterexample = counterexample_json(task, *v.counterexample).dump();
-  if (v.sticking) r.sticking = sticking_check_json(task, *v.sticking).dump();
+  if (v.counterexample) r.counterexample = json_text(counterexample_json(task, *v.counterexample));
+  if (v.sticking) r.sticking = json_text(sticking_check_json(task, *v.sticking));
   r.rollout_seconds = v.rollout_seconds;
   return r;
 }

@@ -5,6 +5,7 @@
 
 #include "experiments/sweep_progress.h"
 #include "models/task_error.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -12,7 +13,7 @@ std::string describe_unit(const SweepUnit& u) {
   std::string s = u.task + "/" + u.strategy + " seed " + std::to_string(u.seed);
   if (!u.params.empty()) {
     s += ' ';  // appended separately: "literal" + string&& trips GCC 12's false -Wrestrict (PR 105329)
-    s += u.params.dump();
+    s += json_text(u.params);
   }
   return s;
 }

@@ -10,8 +10,10 @@
 
 #include "controllers/random.h"
 #include "models/task_error.h"
+#include "models/yaml_document.h"
 #include "models/task_loader.h"
 #include "models/yaml_node.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -19,7 +21,7 @@ namespace {
 
 using SpecNode = YamlNode;  // models/yaml_node.h: the task loader's error style (file, key path, reason)
 
-std::string value_text(const ParamValue& p) { return p.json().dump(); }
+std::string value_text(const ParamValue& p) { return json_text(p.json()); }
 
 class SpecParser {
  public:
@@ -27,14 +29,7 @@ class SpecParser {
       : file_(std::move(label)), base_dir_(std::move(base_dir)) {}
 
   SweepSpec parse(const std::string& text) {
-    YAML::Node root_node;
-    try {
-      root_node = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      throw TaskError(
-          file_, "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
-          "malformed YAML: " + e.msg);
-    }
+    const YAML::Node root_node = load_yaml_document(text, file_);
     const SpecNode root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
     root.require_map({"description", "n", "seeds", "mode", "controller", "sticking_trials",

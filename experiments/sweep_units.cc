@@ -6,6 +6,7 @@
 #include "experiments/stable_hash.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "experiments/json_text.h"
 
 namespace cmt {
 
@@ -40,7 +41,7 @@ std::string make_unit_key(const std::string& task_yaml, const std::string& strat
       .add(controller_form_name(controller))
       .add(sticking_trials)
       .add(counterexample_budget)
-      .add(nlohmann::json(verify_budget_seconds).dump());  // shortest round-trip text
+      .add(json_text(nlohmann::json(verify_budget_seconds)));  // shortest round-trip text
   return fnv1a128_hex(in.text());
 }
 
@@ -56,7 +57,7 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
         name = parse_task_string(yaml, entry.file.string()).name;
       } catch (const TaskError& e) {
         throw TaskError(spec.path, culprit_key(e, params, entry.spec_key),
-                        "these overrides " + params_json(params).dump() +
+                        "these overrides " + json_text(params_json(params)) +
                             " make the task invalid: " + e.key() + ": " + e.reason());
       }
       for (const std::string& strategy : entry.strategies)

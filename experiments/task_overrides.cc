@@ -1,4 +1,5 @@
 #include "experiments/task_overrides.h"
+#include "experiments/json_text.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -10,7 +11,7 @@ namespace {
 
 // A number as the shortest text that reads back as the same double (nlohmann's round-trip formatting), so
 // the edited task holds exactly the value the sweep drew.
-YAML::Node number_node(double v) { return YAML::Node(nlohmann::json(v).dump()); }
+YAML::Node number_node(double v) { return YAML::Node(json_text(nlohmann::json(v))); }
 
 YAML::Node vector_node(const std::vector<double>& v) {
   YAML::Node seq(YAML::NodeType::Sequence);

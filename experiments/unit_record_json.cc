@@ -1,4 +1,5 @@
 #include "experiments/unit_record_json.h"
+#include "experiments/json_text.h"
 
 #include <cmath>
 #include <limits>
@@ -60,7 +61,7 @@ std::string unit_record_to_text(const UnitRecord& r) {
                   {"counterexample", optional_json(r.counterexample)},
                   {"sticking", optional_json(r.sticking)},
                   {"rollout_seconds", real(r.rollout_seconds)}};
-  return j.dump();
+  return json_text(j);
 }
 
 UnitRecord unit_record_from_text(const std::string& text) {

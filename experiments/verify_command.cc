@@ -3,10 +3,13 @@
 #include <chrono>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include "controllers/termination.h"
 #include "experiments/cli_output.h"
 #include "experiments/command.h"
+#include "experiments/json_text.h"
+#include "experiments/verifier_budget.h"
 #include "experiments/verifier_model.h"
 #include "models/task_error.h"
 
@@ -45,6 +48,42 @@ nlohmann::json free_piece_json(const LoadedTask& lt, const VerifyStep& s) {
           {"kind", "free"},
           {"center", point_json(s.free_center, lt.task.dimension)},
           {"radius", s.free_radius}};
+}
+
+// The verification in a forked child under the wall-clock limit (experiments/verifier_budget.h: the verifier
+// has no cancellation points, so only a separate process can be stopped). Returns verify_json, the time-out
+// answer, or {"error": message} for a motion the verifier does not support (bad input).
+nlohmann::json verify_within_time_limit(const LoadedTask& task, const Strategy& strategy,
+                                        const VerifyOptions& options, double time_limit, bool with_reached,
+                                        std::chrono::steady_clock::time_point start) {
+  const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
+    nlohmann::json out;
+    try {
+      const VerifyResult result = verify_strategy(task, strategy, options);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      out = verify_json(task, result, seconds, with_reached);
+      out["timed_out"] = false;
+    } catch (const UnsupportedMotion& e) {
+      out = {{"error", e.what()}};
+    }
+    phase_done();
+    return json_text(out);
+  });
+  if (!run.timed_out) return nlohmann::json::parse(run.payload);
+  std::ostringstream failure;
+  failure << kVerifierTimedOut << " after " << time_limit << " s (--time-limit)";
+  return {{"task", task.task.name},
+          {"reliable", false},
+          {"timed_out", true},
+          {"time_limit", time_limit},
+          {"failure", failure.str()},
+          {"failed_step", -1},
+          {"steps", nlohmann::json::array()},
+          {"outside_goal", nlohmann::json::array()},
+          {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+          {"spring_model", spring_model_name(options.spring_model)},
+          {"stop_relative_speed", options.stop_relative_speed},
+          {"contact_lift", options.contact_lift}};
 }
 
 }  // namespace
@@ -104,6 +143,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     SpringModel spring_model = SpringModel::kVelocity;
     double stop_relative_speed = kStopRelativeSpeed;
     double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
+    double time_limit = kDefaultVerifyTimeLimit;
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -132,6 +172,11 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                   "meet the other face that high); default: the rollouts' MuJoCo scene, (m/b) mu_max V "
                   "(docs/verifier.md \"Contact lift\"); 0 = Buckley's first-order contact")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--time-limit", options->time_limit,
+                  "wall-clock seconds the verifier may run (default " +
+                      std::to_string(kDefaultVerifyTimeLimit) +
+                      "); beyond, the answer is not reliable with timed_out: true (exit 1)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([options, &state] {
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
@@ -147,22 +192,20 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     } else {
       throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
     }
-    VerifyResult result;
-    try {
-      result = verify_strategy(
-          *task, strategy,
-          VerifyOptions{options->spring_model, options->stop_relative_speed,
-                        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)});
-    } catch (const UnsupportedMotion& e) {
-      state.exit_status = report_bad_input(e.what(), state.json);
+    const VerifyOptions verify_options{
+        options->spring_model, options->stop_relative_speed,
+        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)};
+    const nlohmann::json j = verify_within_time_limit(*task, strategy, verify_options, options->time_limit,
+                                                      options->reached, start);
+    if (j.contains("error")) {
+      state.exit_status = report_bad_input(j["error"].get<std::string>(), state.json);
       return;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const nlohmann::json j = verify_json(*task, result, seconds, options->reached);
+    const bool reliable = j["reliable"].get<bool>();
     if (state.json) {
       print_json(j);
     } else {
-      std::cout << task->task.name << ": " << (result.reliable ? "reliable" : "NOT reliable") << "\n";
+      std::cout << task->task.name << ": " << (reliable ? "reliable" : "NOT reliable") << "\n";
       for (const auto& s : j["steps"]) {
         std::cout << "  "
                   << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
@@ -170,9 +213,9 @@ void add_verify_command(CLI::App& app, CommandState& state) {
         for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
         std::cout << "\n";
       }
-      if (!result.reliable) std::cout << "  " << result.failure << "\n";
+      if (!reliable) std::cout << "  " << j["failure"].get<std::string>() << "\n";
     }
-    state.exit_status = result.reliable ? kExitSuccess : kExitFailureFound;
+    state.exit_status = reliable ? kExitSuccess : kExitFailureFound;
   });
 }
 

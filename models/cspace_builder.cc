@@ -13,12 +13,19 @@
 // a
 //    T-junction (a corner of one face on the side of another) is a vertex of the complex, as in Buckley's
 //    hole.
+// Scale: every step only looks at the obstacles, polygons and points that can matter to it, found through
+// conservative bounding boxes (CGAL Box_intersection_d, Zomorodian and Edelsbrunner 2002) and sorted orders;
+// the exact predicates then decide as before. For n disjoint obstacles the cost is near-linear.
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/Polyhedron_3.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -151,6 +158,130 @@ struct PointLess {
   bool operator()(const Point3& a, const Point3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
 };
 
+// A total order on oriented planes: by the coefficients scaled so that the first non-zero normal coordinate
+// is ±1, so two planes are equivalent exactly when they are the same oriented plane (CGAL's Plane_3 ==).
+// Decided on the interval approximations and only on failure on the exact values, like CGAL's filtered
+// predicates: the exact values are computed only for (nearly) equal planes, as Plane_3 == computes them.
+template <class NT>
+bool scaled_less(const std::array<NT, 4>& p, const std::array<NT, 4>& q) {
+  auto scale = [](const std::array<NT, 4>& c) {
+    return c[0] != 0 ? CGAL::abs(c[0]) : c[1] != 0 ? CGAL::abs(c[1]) : CGAL::abs(c[2]);
+  };
+  const NT sp = scale(p), sq = scale(q);
+  for (int i = 0; i < 4; ++i) {
+    const NT l = p[i] * sq, r = q[i] * sp;
+    if (l < r) return true;
+    if (r < l) return false;
+  }
+  return false;
+}
+template <class P>
+auto coefficients(const P& p) {
+  return std::array{p.a(), p.b(), p.c(), p.d()};
+}
+struct PlaneLess {
+  bool operator()(const Plane3& p, const Plane3& q) const {
+    {
+      CGAL::Protect_FPU_rounding<true> protect;
+      try {
+        return scaled_less(coefficients(CGAL::approx(p)), coefficients(CGAL::approx(q)));
+      } catch (CGAL::Uncertain_conversion_exception&) {
+      }
+    }
+    return scaled_less(coefficients(CGAL::exact(p)), coefficients(CGAL::exact(q)));
+  }
+};
+
+using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+using Box2 = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+
+// Conservative bounding boxes of exact points (CGAL rounds outwards: the exact points lie inside).
+CGAL::Bbox_3 bbox_of(const std::vector<Point3>& pts) {
+  CGAL::Bbox_3 b;
+  for (const Point3& p : pts) b += p.bbox();
+  return b;
+}
+CGAL::Bbox_2 bbox_of(const Polygon2Points& pts) {
+  CGAL::Bbox_2 b;
+  for (const Point2& p : pts) b += p.bbox();
+  return b;
+}
+
+// Groups polygons of one plane whose closed bounding boxes overlap, transitively (union-find over the
+// overlapping pairs). Polygons in different groups are disjoint as closed sets, so the regularized Boolean
+// of the plane is the union of the Booleans of the groups. Returns a group label per polygon.
+std::vector<std::size_t> overlap_groups(const std::vector<const Polygon2Points*>& polys) {
+  std::vector<std::size_t> parent(polys.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<Box2> boxes;
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    if (!polys[i]->empty()) boxes.emplace_back(bbox_of(*polys[i]), i);
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box2& x, const Box2& y) {
+    parent[find(x.info())] = find(y.info());
+  });
+  std::vector<std::size_t> label(polys.size());
+  for (std::size_t i = 0; i < polys.size(); ++i) label[i] = find(i);
+  return label;
+}
+
+// Three lexicographic orders of exact points: coordinates (x, y, z), (y, z, x) and (z, x, y). Along any line
+// each order is monotone in the line parameter, so the points strictly inside a segment lie strictly between
+// its end points in every order; the order led by the coordinates constant on the segment gives the
+// narrowest range.
+CGAL::Comparison_result compare_axis(const Point3& p, const Point3& q, int axis) {
+  return axis == 0 ? CGAL::compare_x(p, q) : axis == 1 ? CGAL::compare_y(p, q) : CGAL::compare_z(p, q);
+}
+struct CyclicLess {
+  int first = 0;
+  bool operator()(const Point3& p, const Point3& q) const {
+    for (int k = 0; k < 3; ++k)
+      if (const auto r = compare_axis(p, q, (first + k) % 3); r != CGAL::EQUAL) return r == CGAL::SMALLER;
+    return false;
+  }
+};
+int leading_equal_coordinates(const Point3& a, const Point3& b, int first) {
+  int n = 0;
+  while (n < 3 && compare_axis(a, b, (first + n) % 3) == CGAL::EQUAL) ++n;
+  return n;
+}
+
+// The points of a complex, sorted in the three cyclic orders, to find the points strictly inside a segment.
+class SegmentPointIndex {
+ public:
+  explicit SegmentPointIndex(const std::vector<Point3>& points) : points_(points) {
+    for (int o = 0; o < 3; ++o) {
+      order_[o].resize(points.size());
+      std::iota(order_[o].begin(), order_[o].end(), 0);
+      std::sort(order_[o].begin(), order_[o].end(),
+                [&](int x, int y) { return CyclicLess{o}(points_[x], points_[y]); });
+    }
+  }
+  // Indices of the points strictly between a and b in the best order: a superset of the points strictly
+  // inside segment ab.
+  std::vector<int> candidates(const Point3& a, const Point3& b) const {
+    int best = 0;
+    for (int o = 1; o < 3; ++o)
+      if (leading_equal_coordinates(a, b, o) > leading_equal_coordinates(a, b, best)) best = o;
+    const CyclicLess less{best};
+    const Point3& lo = less(a, b) ? a : b;
+    const Point3& hi = less(a, b) ? b : a;
+    const auto& order = order_[best];
+    auto first = std::upper_bound(order.begin(), order.end(), lo,
+                                  [&](const Point3& p, int i) { return less(p, points_[i]); });
+    auto last = std::lower_bound(order.begin(), order.end(), hi,
+                                 [&](int i, const Point3& p) { return less(points_[i], p); });
+    return first < last ? std::vector<int>(first, last) : std::vector<int>{};
+  }
+
+ private:
+  const std::vector<Point3>& points_;
+  std::vector<int> order_[3];
+};
+
 }  // namespace
 
 class CSpaceBuilder {
@@ -238,67 +369,173 @@ class CSpaceBuilder {
     clip_corners_ = box_corners(clip_);
   }
 
-  void add_plane(const Plane3& p) {
-    if (std::find(planes_.begin(), planes_.end(), p) == planes_.end()) planes_.push_back(p);
+  // Index of the oriented plane in planes_, added on first sight (planes_ keeps first-sight order).
+  std::size_t add_plane(const Plane3& p) {
+    const auto [it, inserted] = plane_index_.emplace(p, planes_.size());
+    if (inserted) {
+      planes_.push_back(p);
+      plane_obstacles_.emplace_back();
+    }
+    return it->second;
+  }
+  std::optional<std::size_t> find_plane(const Plane3& p) const {
+    const auto it = plane_index_.find(p);
+    if (it == plane_index_.end()) return std::nullopt;
+    return it->second;
+  }
+
+  // Every oriented plane carrying an obstacle facet (with the obstacles whose facet it carries), then the
+  // walls.
+  void collect_planes() {
+    for (std::size_t i = 0; i < obstacles_.size(); ++i)
+      for (const Plane3& p : obstacles_[i].planes) plane_obstacles_[add_plane(p)].push_back(i);
+    for (const Plane3& w : walls_) add_plane(w);
+  }
+
+  // A box holding every point of `plane` inside `world` (conservative; empty when the plane misses it).
+  // Interval arithmetic on the plane's approximation: solved for the coordinate whose coefficient is surely
+  // largest in size, over the world's extent in the other two.
+  static std::optional<CGAL::Bbox_3> plane_box(const Plane3& plane, const CGAL::Bbox_3& world) {
+    using I = CGAL::Interval_nt<false>;
+    CGAL::Protect_FPU_rounding<true> protect;
+    const auto approx = CGAL::approx(plane);
+    const I coef[3] = {approx.a(), approx.b(), approx.c()};
+    int k = 0;
+    for (int j = 1; j < 3; ++j)
+      if (CGAL::abs(coef[j]).inf() > CGAL::abs(coef[k]).inf()) k = j;
+    if (CGAL::abs(coef[k]).inf() <= 0) return world;  // no certain leading coefficient: the whole world
+    I rest = approx.d();
+    for (int j = 0; j < 3; ++j)
+      if (j != k) rest += coef[j] * I(world.min(j), world.max(j));
+    const I at = -rest / coef[k];
+    if (at.sup() < world.min(k) || at.inf() > world.max(k)) return std::nullopt;
+    double lo[3] = {world.xmin(), world.ymin(), world.zmin()},
+           hi[3] = {world.xmax(), world.ymax(), world.zmax()};
+    lo[k] = std::max(lo[k], at.inf());
+    hi[k] = std::min(hi[k], at.sup());
+    return CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+  }
+
+  // For every plane, the obstacles whose bounding box meets the plane: a superset of those the plane cuts.
+  std::vector<std::vector<std::size_t>> cut_candidates() const {
+    CGAL::Bbox_3 world(clip_.min.x(), clip_.min.y(), clip_.min.z(), clip_.max.x(), clip_.max.y(),
+                       clip_.max.z());
+    std::vector<Box3> obstacle_boxes, plane_boxes;
+    for (std::size_t i = 0; i < obstacles_.size(); ++i) {
+      const CGAL::Bbox_3 b = bbox_of(obstacles_[i].vertices);
+      obstacle_boxes.emplace_back(b, i);
+      world += b;
+    }
+    for (std::size_t pi = 0; pi < planes_.size(); ++pi)
+      if (const auto b = plane_box(planes_[pi], world)) plane_boxes.emplace_back(*b, pi);
+    std::vector<std::vector<std::size_t>> out(planes_.size());
+    CGAL::box_intersection_d(
+        plane_boxes.begin(), plane_boxes.end(), obstacle_boxes.begin(), obstacle_boxes.end(),
+        [&](const Box3& plane, const Box3& obstacle) { out[plane.info()].push_back(obstacle.info()); });
+    return out;
+  }
+
+  // The obstacles that can contribute to plane pi's faces (a facet on it or on its opposite, or a cut by it),
+  // in obstacle order.
+  std::vector<std::size_t> plane_contributors(std::size_t pi, std::vector<std::size_t> cuts) const {
+    cuts.insert(cuts.end(), plane_obstacles_[pi].begin(), plane_obstacles_[pi].end());
+    if (const auto opposite = find_plane(planes_[pi].opposite()))
+      cuts.insert(cuts.end(), plane_obstacles_[*opposite].begin(), plane_obstacles_[*opposite].end());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    return cuts;
   }
 
   void make_faces() {
-    for (const ExactObstacle& ob : obstacles_)
-      for (const Plane3& p : ob.planes) add_plane(p);
-    for (const Plane3& w : walls_) add_plane(w);
+    collect_planes();
+    std::vector<std::vector<std::size_t>> cuts = cut_candidates();
+    for (std::size_t pi = 0; pi < planes_.size(); ++pi)
+      make_plane_faces(planes_[pi], plane_contributors(pi, std::move(cuts[pi])));
+  }
 
-    for (const Plane3& plane : planes_) {
-      // A plane facing out of the clip box at one of its walls has no free space on its positive side.
-      bool faces_out = false;
-      for (const Plane3& w : walls_)
-        if (plane == w.opposite()) faces_out = true;
-      if (faces_out) continue;
-      const PlaneChart chart(plane);
-      const Plane3 opposite = plane.opposite();
+  // The faces on one oriented plane; `contributors` are the only obstacles with a facet on the plane or its
+  // opposite or cut by it (the others add nothing).
+  void make_plane_faces(const Plane3& plane, const std::vector<std::size_t>& contributors) {
+    // A plane facing out of the clip box at one of its walls has no free space on its positive side.
+    for (const Plane3& w : walls_)
+      if (plane == w.opposite()) return;
+    const PlaneChart chart(plane);
+    const Plane3 opposite = plane.opposite();
 
-      // Below: facets with outward normal n, grouped by friction; the bounds wall uses the task's friction.
-      std::map<double, std::vector<Polygon2Points>, std::greater<>> below_by_friction;
-      std::vector<Polygon2Points> above;
-      for (const ExactObstacle& ob : obstacles_) {
-        for (std::size_t k = 0; k < ob.planes.size(); ++k) {
-          if (ob.planes[k] == plane) below_by_friction[ob.friction].push_back(project(chart, ob.facets[k]));
-          if (ob.planes[k] == opposite) above.push_back(project(chart, ob.facets[k]));
-        }
-        bool cuts = false;
-        const std::vector<Point3> section = cross_section(ob.vertices, plane, &cuts);
-        if (cuts) above.push_back(project(chart, section));
+    // Below: facets with outward normal n, grouped by friction; the bounds wall uses the task's friction.
+    std::map<double, std::vector<Polygon2Points>, std::greater<>> below_by_friction;
+    std::vector<Polygon2Points> above;
+    for (const std::size_t i : contributors) {
+      const ExactObstacle& ob = obstacles_[i];
+      for (std::size_t k = 0; k < ob.planes.size(); ++k) {
+        if (ob.planes[k] == plane) below_by_friction[ob.friction].push_back(project(chart, ob.facets[k]));
+        if (ob.planes[k] == opposite) above.push_back(project(chart, ob.facets[k]));
       }
-      bool phantom = false;
-      for (int s = 0; s < 6; ++s)
-        if (plane == walls_[s]) {
-          bool cuts = false;
-          below_by_friction[task_.friction].push_back(
-              project(chart, cross_section(clip_corners_, plane, &cuts)));
-          phantom = !wall_real_[s];
-        }
-      if (below_by_friction.empty()) continue;
-      bool cuts_clip = false;
-      const Polygon2Points clip = project(chart, cross_section(clip_corners_, plane, &cuts_clip));
-      bool on_wall = false;
-      for (const Plane3& w : walls_) on_wall = on_wall || plane == w;
-      if (!cuts_clip && !on_wall) continue;  // the plane misses the clip box's interior
+      bool cuts = false;
+      const std::vector<Point3> section = cross_section(ob.vertices, plane, &cuts);
+      if (cuts) above.push_back(project(chart, section));
+    }
+    bool phantom = false;
+    for (int s = 0; s < 6; ++s)
+      if (plane == walls_[s]) {
+        bool cuts = false;
+        below_by_friction[task_.friction].push_back(
+            project(chart, cross_section(clip_corners_, plane, &cuts)));
+        phantom = !wall_real_[s];
+      }
+    if (below_by_friction.empty()) return;
+    bool cuts_clip = false;
+    const Polygon2Points clip = project(chart, cross_section(clip_corners_, plane, &cuts_clip));
+    bool on_wall = false;
+    for (const Plane3& w : walls_) on_wall = on_wall || plane == w;
+    if (!cuts_clip && !on_wall) return;  // the plane misses the clip box's interior
+    carve_plane(plane, chart, phantom, clip, above, below_by_friction);
+  }
 
-      // Larger friction wins where coplanar facets of different friction overlap (documented in docs/).
-      std::vector<Polygon2Points> taken = above;
-      for (const auto& [friction, below] : below_by_friction) {
+  // Larger friction wins where coplanar facets of different friction overlap (documented in docs/): each
+  // friction's facets minus the facets above and the facets of larger friction. The Boolean is done per
+  // group of polygons with overlapping bounding boxes (overlap_groups), so its cost follows the groups'
+  // sizes, not the plane's polygon count; polygons keep their relative order within a group.
+  void carve_plane(const Plane3& plane, const PlaneChart& chart, bool phantom, const Polygon2Points& clip,
+                   const std::vector<Polygon2Points>& above,
+                   const std::map<double, std::vector<Polygon2Points>, std::greater<>>& below_by_friction) {
+    std::vector<const Polygon2Points*> items;  // above, then each friction's facets, largest friction first
+    std::vector<std::size_t> rank;             // 0 above, k for the k-th friction
+    for (const Polygon2Points& a : above) items.push_back(&a), rank.push_back(0);
+    std::size_t r = 0;
+    for (const auto& entry : below_by_friction) {
+      ++r;
+      for (const Polygon2Points& b : entry.second) items.push_back(&b), rank.push_back(r);
+    }
+    const std::vector<std::size_t> label = overlap_groups(items);
+    std::map<std::size_t, std::vector<std::size_t>> groups;  // by label: member items in order
+    for (std::size_t i = 0; i < items.size(); ++i) groups[label[i]].push_back(i);
+    r = 0;
+    for (const auto& [friction, unused] : below_by_friction) {
+      ++r;
+      for (const auto& entry : groups) {
+        std::vector<Polygon2Points> below, taken;
+        for (const std::size_t i : entry.second) {
+          if (rank[i] == r) below.push_back(*items[i]);
+          if (rank[i] < r) taken.push_back(*items[i]);
+        }
+        if (below.empty()) continue;
         for (const RegionWithHoles& region : planar_region(below, taken, clip, true))
-          for (const Polygon2Points& piece : convex_pieces(region)) {
-            ExactFace face;
-            face.plane = plane;
-            face.friction = friction;
-            face.phantom = phantom;
-            for (const Point2& q : piece) face.polygon.push_back(chart.lift(q));
-            if (chart.flips()) std::reverse(face.polygon.begin(), face.polygon.end());
-            faces_.push_back(std::move(face));
-          }
-        taken.insert(taken.end(), below.begin(), below.end());
+          for (const Polygon2Points& piece : convex_pieces(region))
+            add_face(plane, chart, friction, phantom, piece);
       }
     }
+  }
+
+  void add_face(const Plane3& plane, const PlaneChart& chart, double friction, bool phantom,
+                const Polygon2Points& piece) {
+    ExactFace face;
+    face.plane = plane;
+    face.friction = friction;
+    face.phantom = phantom;
+    for (const Point2& q : piece) face.polygon.push_back(chart.lift(q));
+    if (chart.flips()) std::reverse(face.polygon.begin(), face.polygon.end());
+    faces_.push_back(std::move(face));
   }
 
   static Polygon2Points project(const PlaneChart& chart, const std::vector<Point3>& pts) {
@@ -329,17 +566,18 @@ class CSpaceBuilder {
     std::map<std::pair<int, int>, std::vector<int>> edge_faces;  // by (smaller, larger) point index
     std::vector<std::vector<std::pair<int, int>>> face_edges(faces_.size());
     std::vector<std::set<int>> face_points(faces_.size());
+    const SegmentPointIndex point_index(points);
     for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
       const auto& poly = faces_[fi].polygon;
       for (std::size_t k = 0; k < poly.size(); ++k) {
         const Point3& a = poly[k];
         const Point3& b = poly[(k + 1) % poly.size()];
         std::vector<int> inner;
-        for (std::size_t pi = 0; pi < points.size(); ++pi) {
+        for (const int pi : point_index.candidates(a, b)) {
           const Point3& p = points[pi];
           if (p != a && p != b && CGAL::collinear(a, p, b) &&
               CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
-            inner.push_back(static_cast<int>(pi));
+            inner.push_back(pi);
         }
         std::sort(inner.begin(), inner.end(),
                   [&](int x, int y) { return CGAL::has_smaller_distance_to_point(a, points[x], points[y]); });
@@ -373,7 +611,10 @@ class CSpaceBuilder {
       key.insert(key.end(), {l.x(), l.y(), l.z()});
       return key;
     };
-    std::sort(face_order.begin(), face_order.end(), [&](int a, int b) { return face_key(a) < face_key(b); });
+    std::vector<std::vector<double>> face_keys(faces_.size());
+    for (const int i : face_order) face_keys[i] = face_key(i);
+    std::sort(face_order.begin(), face_order.end(),
+              [&](int a, int b) { return face_keys[a] < face_keys[b]; });
 
     std::vector<int> vertex_order;
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -496,7 +737,9 @@ class CSpaceBuilder {
   bool wall_real_[6] = {false, false, false, false, false, false};
   Plane3 walls_[6];
   std::vector<Point3> clip_corners_;
-  std::vector<Plane3> planes_;
+  std::vector<Plane3> planes_;                             // distinct oriented planes, first-sight order
+  std::map<Plane3, std::size_t, PlaneLess> plane_index_;   // into planes_
+  std::vector<std::vector<std::size_t>> plane_obstacles_;  // per plane: obstacles with a facet on it
   std::vector<ExactFace> faces_;
   CSpace out_;
 };

@@ -4,6 +4,7 @@
 
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "models/task_ranges.h"
 #include "models/task_transform.h"
 
 namespace cmt {
@@ -23,6 +24,8 @@ void check_on_surface(const LoadedTask& lt, const Region& region) {
 }
 
 std::shared_ptr<const LoadedTask> finish(Task task) {
+  apply_scene_defaults(task);
+  check_task_ranges(task);
   CSpace cspace = CSpace::build(task);
   auto loaded = std::make_shared<LoadedTask>(LoadedTask{std::move(task), std::move(cspace)});
   check_on_surface(*loaded, loaded->task.start);

@@ -1,5 +1,6 @@
 // The error every bad-input path raises: it names the file, the YAML key path and the reason
-// (DEVELOPERS.md "Robust"); the cmt program turns it into exit status 2.
+// (DEVELOPERS.md "Robust"); the cmt program turns it into exit status 2. A YAML syntax error also carries
+// where in the text it is (1-based line and column).
 #pragma once
 
 #include <stdexcept>
@@ -7,19 +8,29 @@
 
 namespace cmt {
 
+struct TextLocation {
+  int line = 0;  // 1-based; 0 = no location
+  int column = 0;
+  std::string text() const { return "line " + std::to_string(line) + ", column " + std::to_string(column); }
+};
+
 class TaskError : public std::runtime_error {
  public:
-  TaskError(std::string file, std::string key, std::string reason)
-      : std::runtime_error(file + ": " + (key.empty() ? std::string("(top level)") : key) + ": " + reason),
+  TaskError(std::string file, std::string key, std::string reason, TextLocation where = {})
+      : std::runtime_error(file + ": " + (where.line > 0 ? where.text() + ": " : std::string()) +
+                           (key.empty() ? std::string("(top level)") : key) + ": " + reason),
         file_(std::move(file)),
         key_(std::move(key)),
-        reason_(std::move(reason)) {}
+        reason_(std::move(reason)),
+        where_(where) {}
   const std::string& file() const { return file_; }
   const std::string& key() const { return key_; }
   const std::string& reason() const { return reason_; }
+  const TextLocation& where() const { return where_; }
 
  private:
   std::string file_, key_, reason_;
+  TextLocation where_;
 };
 
 }  // namespace cmt

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "models/task_error.h"
+#include "models/task_ranges.h"
+#include "models/yaml_document.h"
 #include "models/yaml_node.h"
 
 namespace cmt {
@@ -54,7 +56,7 @@ class Parser {
       else
         root.at("units").fail("must be one of in, mm, m; got '" + u + "'");
     }
-    if (root.has("friction")) task.friction = nonnegative(root.at("friction"), "friction coefficient");
+    if (root.has("friction")) task.friction = friction(root.at("friction"));
     task.uncertainty = parse_uncertainty(root.at("uncertainty"));
 
     const bool physical = root.has("robot") || root.has("environment");
@@ -77,6 +79,7 @@ class Parser {
     const Node goal = root.at("goal");
     if (goal.is_sequence()) {
       if (goal.size() == 0) goal.fail("the goal list is empty");
+      check_size(goal, goal.size(), kMaxGoalRegions, "goal regions");
       for (std::size_t i = 0; i < goal.size(); ++i) task.goal.push_back(parse_region(goal.item(i)));
     } else {
       task.goal.push_back(parse_region(goal));
@@ -91,6 +94,11 @@ class Parser {
     const double v = n.number();
     if (v < 0) n.fail(what + " must be >= 0, got " + format(v));
     return v;
+  }
+  double friction(const Node& n) const {
+    const double mu = nonnegative(n, "friction coefficient");
+    if (mu > kMaxFriction) n.fail("friction coefficient " + format(mu) + " exceeds " + format(kMaxFriction));
+    return mu;
   }
   static std::string format(double v) {
     std::ostringstream s;
@@ -108,7 +116,7 @@ class Parser {
       n.at("theta_v").fail("must be < pi/2 (1.5708) radians, got " + format(u.theta_v));
     u.theta_f = nonnegative(n.at("theta_f"), "the force-sensing error angle");
     if (u.theta_f >= std::numbers::pi) n.at("theta_f").fail("must be < pi radians, got " + format(u.theta_f));
-    u.step = u.eps_p;
+    u.step = 0;  // absent: apply_scene_defaults (models/task_ranges.h) sets it from eps_p and the scene
     if (n.has("step")) {
       u.step = n.at("step").number();
       if (u.step <= 0) n.at("step").fail("the spring interpolation step must be > 0, got " + format(u.step));
@@ -121,8 +129,27 @@ class Parser {
     if (!n.is_sequence()) n.fail("expected a list of " + std::to_string(dimension_) + " numbers");
     if (static_cast<int>(n.size()) != dimension_)
       n.fail("expected " + std::to_string(dimension_) + " numbers, got " + std::to_string(n.size()));
-    if (dimension_ == 2) return Vec3(n.item(0).number(), planar_y, n.item(1).number());
-    return Vec3(n.item(0).number(), n.item(1).number(), n.item(2).number());
+    const auto coordinate = [&](std::size_t i) {
+      const double v = n.item(i).number();
+      if (std::abs(v) > kMaxCoordinate)
+        n.item(i).fail("magnitude " + format(std::abs(v)) + " exceeds the largest accepted coordinate " +
+                       format(kMaxCoordinate) + " (docs/task-format.md \"Accepted ranges and sizes\")");
+      return v;
+    };
+    if (dimension_ == 2) return Vec3(coordinate(0), planar_y, coordinate(1));
+    return Vec3(coordinate(0), coordinate(1), coordinate(2));
+  }
+  // A direction (damper velocity, force cone axis), normalized.
+  Vec3 parse_direction(const Node& n, const std::string& what) const {
+    Vec3 d = parse_vector(n);
+    if (!(d.norm() >= kMinDirectionLength))
+      n.fail(what + " is the zero vector (or shorter than " + format(kMinDirectionLength) + ")");
+    return d.normalized();
+  }
+  // At most `limit` items (docs/task-format.md "Accepted ranges and sizes").
+  static void check_size(const Node& n, std::size_t size, std::size_t limit, const std::string& what) {
+    if (size > limit)
+      n.fail("too many " + what + ": " + std::to_string(size) + ", at most " + std::to_string(limit));
   }
 
   AxisBox parse_box(const Node& n, const std::set<std::string>& allowed, double planar_half_depth = 0) const {
@@ -144,6 +171,7 @@ class Parser {
 
   std::vector<ConvexPart> parse_parts(const Node& list_node, double default_friction, bool robot) const {
     const Node list = list_node.sequence();
+    check_size(list, list.size(), kMaxParts, "parts");
     std::vector<ConvexPart> parts;
     const double half_depth = robot ? kPlanarRobotHalfDepth : kPlanarPartHalfDepth;
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -169,6 +197,7 @@ class Parser {
         body.require_map(allowed);
         part.shape = ConvexPart::Shape::kConvex;
         const Node verts = body.at("vertices").sequence();
+        check_size(verts, verts.size(), kMaxConvexVertices, "points");
         for (std::size_t k = 0; k < verts.size(); ++k) {
           if (dimension_ == 2) {
             part.vertices.push_back(parse_vector(verts.item(k), -half_depth));
@@ -179,8 +208,7 @@ class Parser {
         }
         check_solid(body.at("vertices"), part.vertices);
       }
-      if (!robot && body.has("friction"))
-        part.friction = nonnegative(body.at("friction"), "friction coefficient");
+      if (!robot && body.has("friction")) part.friction = friction(body.at("friction"));
       parts.push_back(std::move(part));
     }
     return parts;
@@ -219,6 +247,7 @@ class Parser {
     }
     const bool segment = n.has("segment");
     const Node pts = n.at(segment ? "segment" : "polygon").sequence();
+    check_size(pts, pts.size(), kMaxRegionPoints, "points");
     for (std::size_t i = 0; i < pts.size(); ++i) r.points.push_back(parse_vector(pts.item(i)));
     if (segment) {
       r.kind = Region::Kind::kSegment;
@@ -273,9 +302,7 @@ class Parser {
       for_each_item(child("force"), [&](const Node& item) {
         item.require_map({"direction", "angle"});
         ForceCone c;
-        c.direction = parse_vector(item.at("direction"));
-        if (c.direction.norm() == 0) item.at("direction").fail("the force direction is the zero vector");
-        c.direction.normalize();
+        c.direction = parse_direction(item.at("direction"), "the force direction");
         c.angle = item.at("angle").number();
         // A circular cone wider than a half-space is not convex (models/friction_cone.h CircularCone); a zero
         // angle is a single direction, which no sensed force matches in practice.
@@ -295,6 +322,7 @@ class Parser {
 
   void parse_motions(const Node& n, Task& task) const {
     if (!n.is_map()) n.fail("expected a mapping of motion names");
+    check_size(n, n.size(), kMaxMotions, "motions");
     std::set<std::string> names;
     for (const auto& kv : n.raw()) {
       const std::string name = kv.first.as<std::string>();
@@ -310,10 +338,7 @@ class Parser {
         motion.target = parse_vector(m.at("spring"));
       } else {
         motion.kind = Motion::Kind::kDamper;
-        motion.target = parse_vector(m.at("damper"));
-        if (motion.target.norm() == 0)
-          m.at("damper").fail("the commanded velocity direction is the zero vector");
-        motion.target.normalize();
+        motion.target = parse_direction(m.at("damper"), "the commanded velocity direction");
       }
       if (defined("terminate"))
         motion.terminate = parse_termination(Node(m.raw()["terminate"], m.child_path("terminate"), &file_));
@@ -363,6 +388,7 @@ class Parser {
       node.parent = previous;
       node.branch = i == 0 ? parent_branch : -1;
       const int id = static_cast<int>(strategy.nodes.size());
+      check_size(list.item(i), strategy.nodes.size() + 1, kMaxStrategyNodes, "motions in one strategy");
       strategy.nodes.push_back(node);
       if (i > 0) strategy.nodes[static_cast<std::size_t>(previous)].next = id;
       if (first < 0) first = id;
@@ -409,15 +435,7 @@ class Parser {
 }  // namespace
 
 Task parse_task_string(const std::string& yaml_text, const std::string& file_label) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw TaskError(
-        file_label,
-        "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
-        "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = load_yaml_document(yaml_text, file_label);
   try {
     return Parser(file_label).parse(root);
   } catch (const YAML::Exception& e) {
@@ -428,6 +446,12 @@ Task parse_task_string(const std::string& yaml_text, const std::string& file_lab
 Task parse_task_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw TaskError(path.string(), "", "cannot open the file");
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxTaskFileBytes)
+    throw TaskError(path.string(), "",
+                    "the file has " + std::to_string(bytes) + " bytes, more than the " +
+                        std::to_string(kMaxTaskFileBytes) + " accepted");
   std::stringstream buffer;
   buffer << in.rdbuf();
   return parse_task_string(buffer.str(), path.string());

@@ -206,7 +206,9 @@ FaceStickingRadii face_sticking_radii(const Face& face, const Vec3& p, const Unc
     };
     if (dist_to_cone(0) <= u.eps_s) {
       double lo = 0, hi = 1;
-      while (dist_to_cone(hi) <= u.eps_s) hi *= 2;
+      // eps_s and h are finite (models/task_ranges.h), so the doubling ends; a non-finite bound would not,
+      // and then the whole face may stick (the sound answer).
+      while (dist_to_cone(hi) <= u.eps_s && std::isfinite(hi)) hi *= 2;
       for (int i = 0; i < 100; ++i) {
         const double mid = 0.5 * (lo + hi);
         (dist_to_cone(mid) <= u.eps_s ? lo : hi) = mid;

@@ -434,7 +434,6 @@ void split_source(const std::vector<Vec3>& poly, const Vec3& center, double eps,
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector<Point3>& src,
                                     int source_face, const VelocitySpring& m) {
   const double scale = g.cspace->scale();
-  const double eps = m.u.eps_s;
   const double delta = spring_spiral_deviation(m.u.theta_v);
   const double margin = kSlack * scale;
   const Vec3& p = m.p;
@@ -444,8 +443,9 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
   // tube growth delta (R_max − R_lower) <= eps / 4.
   std::vector<Vec3> poly;
   for (const Point3& x : src) poly.push_back(to_vec(x));
-  const double radial_limit = delta > 0 ? eps / (4 * delta) : std::numeric_limits<double>::infinity();
-  split_source(poly, p, eps, radial_limit, margin, [&](const std::vector<Vec3>& piece, double r_lower) {
+  const double cut_eps = cutting_eps(m.u, scale);
+  const double radial_limit = delta > 0 ? cut_eps / (4 * delta) : std::numeric_limits<double>::infinity();
+  split_source(poly, p, cut_eps, radial_limit, margin, [&](const std::vector<Vec3>& piece, double r_lower) {
     fly_piece(g, piece, source_face, m, r_lower, &regions, &lowers);
   });
   std::vector<FlightHit> out;
@@ -778,7 +778,8 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
   }
   // Radial extent: the lateral bound grows by about L(d0) / d0 per unit of d0 (at most tan of the in-plane
   // angle, which is >= theta_v); eps / 4 of growth per piece, as for flights.
-  const double radial_limit = m.u.eps_s / (4 * std::max(std::tan(m.u.theta_v), 1e-3));
+  const double radial_limit =
+      cutting_eps(m.u, g.cspace->scale()) / (4 * std::max(std::tan(m.u.theta_v), 1e-3));
   std::vector<Polygon2> polys;
   Points2 first_lower;
   // A source near p' (within 2 eps_s) cannot be cut into pieces whose directions from p' are defined (the
@@ -801,7 +802,7 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
     }
   }
   for (const std::vector<Vec3>& part : parts)
-    split_source(part, center, m.u.eps_s, radial_limit, kSlack * g.cspace->scale(),
+    split_source(part, center, cutting_eps(m.u, g.cspace->scale()), radial_limit, kSlack * g.cspace->scale(),
                  [&](const std::vector<Vec3>& piece, double) {
                    Points2 pts;
                    for (const Vec3& x : piece) pts.push_back(chart.project(x));

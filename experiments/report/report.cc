@@ -13,6 +13,7 @@
 #include "experiments/report/sticking_figure.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
+#include "experiments/json_text.h"
 
 namespace cmt::report {
 namespace {
@@ -165,7 +166,7 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   write_text_file(summary.index, render_html(content));
   write_text_file(
       summary.figures_json,
-      nlohmann::json({{"database", database.string()}, {"figures", builder.figures()}}).dump(2) + "\n");
+      json_text(nlohmann::json({{"database", database.string()}, {"figures", builder.figures()}}), 2) + "\n");
   return summary;
 }
 

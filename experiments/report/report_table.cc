@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "experiments/verifier_budget.h"
+#include "experiments/json_text.h"
 
 namespace cmt::report {
 namespace {
@@ -33,7 +34,7 @@ std::vector<Cell> table_row(const ConfigSection& s) {
   row.push_back(text(std::to_string(c.config_id)));
   row.push_back(text(c.task));
   row.push_back(text(c.strategy));
-  row.push_back(text(c.params.empty() ? "-" : c.params.dump()));
+  row.push_back(text(c.params.empty() ? "-" : json_text(c.params)));
   row.push_back(text(verdict(c)));
   row.push_back(text(c.done() ? "done" : "pending"));
   row.push_back(text(std::to_string(c.seed)));
@@ -104,7 +105,7 @@ std::string config_label(const ConfigRow& row) {
   std::string label = row.task + " / " + row.strategy;
   if (!row.params.empty()) {  // two appends: GCC 12 warns falsely (-Wrestrict, bug 105329) on " " + string
     label += ' ';
-    label += row.params.dump();
+    label += json_text(row.params);
   }
   return label;
 }
@@ -120,7 +121,7 @@ std::string counterexample_command(const nlohmann::json& counterexample) {
   if (counterexample.is_null()) return "";
   if (counterexample.is_object() && counterexample.contains("replay") && counterexample["replay"].is_string())
     return counterexample["replay"].get<std::string>();
-  return counterexample.dump();
+  return json_text(counterexample);
 }
 
 ReportContent build_report_content(const ResultsDb& db, std::vector<ConfigSection> sections) {

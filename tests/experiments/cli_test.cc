@@ -90,6 +90,30 @@ TEST(CmtErrors, BadInputExitsTwoWithJsonError) {
   EXPECT_EQ(j["error"]["key"], "uncertainty.theta_v");
 }
 
+TEST(CmtErrors, JsonSurvivesBytesThatAreNotUtf8) {
+  // The bad byte sits in an unknown key (quoted in the message) and in the name (quoted too).
+  for (const std::string& text : {std::string("name: x\n\xbc: 1\n"), std::string("name: \"a\xbc\"\n")}) {
+    const std::string path = testing::TempDir() + "/not_utf8.yaml";
+    std::ofstream(path, std::ios::binary) << text;
+    const Result r = run("info " + path + " --json");
+    EXPECT_EQ(r.status, 2);
+    const auto j = nlohmann::json::parse(r.out);  // throws (fails the test) on invalid JSON
+    EXPECT_NE(j["error"]["message"].get<std::string>().find("\xEF\xBF\xBD"), std::string::npos)
+        << "the bad byte is shown as U+FFFD";
+  }
+}
+
+TEST(CmtErrors, SyntaxErrorHasKeyAndPlace) {
+  const std::string path = testing::TempDir() + "/syntax.yaml";
+  std::ofstream(path) << "name: x\nuncertainty: {eps_s: [1, 2}\n";
+  const Result r = run("info " + path + " --json");
+  EXPECT_EQ(r.status, 2);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["error"]["key"], "uncertainty");
+  EXPECT_EQ(j["error"]["line"], 2);
+  EXPECT_EQ(j["error"]["column"], 27);
+}
+
 TEST(CmtErrors, MissingFileAndUsage) {
   EXPECT_EQ(run("info /nonexistent.yaml --json").status, 2);
   EXPECT_EQ(run("no-such-command").status, 2);
@@ -154,6 +178,7 @@ TEST(CmtVerify, TwoBlocksDamperStrategies) {
   EXPECT_EQ(d["steps"][0]["motion"], "v1");
   EXPECT_FALSE(d["steps"][0]["termination"].empty());
   EXPECT_TRUE(d.contains("seconds"));
+  EXPECT_EQ(d["timed_out"], false);
   // slide: 45 degrees down-left from B's top; it can stick only in the corner where A's wall meets the gap
   // floor.
   const Result slide = run("verify " + task("two_blocks") + " --strategy slide --json");
@@ -244,6 +269,20 @@ TEST(CmtVerify, TslotInsertReliableUnderTheVelocityModel) {
         EXPECT_GE(z, -5.0 - 1e-9);
         EXPECT_LE(z, -2.0 + 1e-9);
       });
+}
+
+TEST(CmtVerify, TimeLimitGivesAClearAnswer) {
+  // peg_in_hole_real teach_too_deep verifies in tens of seconds: 10 ms is not enough.
+  const Result r =
+      run("verify " + task("peg_in_hole_real") + " --strategy teach_too_deep --time-limit 0.01 --json");
+  EXPECT_EQ(r.status, 1);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["reliable"], false);
+  EXPECT_EQ(j["timed_out"], true);
+  EXPECT_EQ(j["time_limit"], 0.01);
+  EXPECT_TRUE(j["steps"].empty());
+  EXPECT_NE(j["failure"].get<std::string>().find("timed out"), std::string::npos);
+  EXPECT_EQ(run("verify " + task("two_blocks") + " --strategy down --time-limit 0 --json").status, 2);
 }
 
 TEST(CmtVerify, SpringModelOption) {

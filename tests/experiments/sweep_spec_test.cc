@@ -59,7 +59,7 @@ TEST(SweepSpec, StructuralErrorsNameFileKeyAndReason) {
                "the damper motion 'v1'");
   expect_error(two_blocks_spec("", "n: 10\nseeds: [1]\nsticking_trials: -1\n"), "sticking_trials",
                "must be in [0, ");
-  expect_error("n: 10\nseeds: [1]\ntasks: [\n", "line 4, column 1", "malformed YAML");
+  expect_error("n: 10\nseeds: [1]\ntasks: [\n", "tasks", "malformed YAML");
   expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: no_such_task.yaml\n    strategies: [down]\n",
                "tasks[0].file", "cannot open the task file '/no_such_task.yaml'");
   expect_error("n: 10\nseeds: [1]\ntasks:\n  - file: " + kTwoBlocks + "\n    stratgies: [down]\n",

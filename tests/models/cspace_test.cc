@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <sstream>
+#include <vector>
 
 #include "models/loaded_task.h"
+#include "models/task_loader.h"
 #include "tests/models/test_tasks.h"
 
 namespace cmt {
@@ -14,6 +18,94 @@ std::map<EdgeShape, int> count_shapes(const CSpace& c) {
   std::map<EdgeShape, int> n;
   for (const Edge& e : c.edges()) ++n[e.shape];
   return n;
+}
+
+struct TestBox {
+  Vec3 min, max;
+};
+
+// A C-space task of the given boxes inside bounds `lo`..`hi`, start and goal on the first box's top.
+std::string boxes_yaml(const std::vector<TestBox>& boxes, const Vec3& lo, const Vec3& hi) {
+  auto v = [](const Vec3& p) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "[" << p.x() << ", " << p.y() << ", " << p.z() << "]";
+    return s.str();
+  };
+  std::ostringstream y;
+  y << "name: boxes\nunits: in\nfriction: 0.25\n"
+    << "uncertainty: {eps_s: 0.2, eps_p: 0.2, theta_v: 0.25, theta_f: 0.3}\ncspace:\n";
+  for (const TestBox& b : boxes) y << "  - box: {min: " << v(b.min) << ", max: " << v(b.max) << "}\n";
+  const Vec3 top(0.5 * (boxes[0].min.x() + boxes[0].max.x()), 0.5 * (boxes[0].min.y() + boxes[0].max.y()),
+                 boxes[0].max.z());
+  y << "bounds: {min: " << v(lo) << ", max: " << v(hi) << "}\n"
+    << "start: {point: " << v(top) << "}\ngoal: {point: " << v(top) << "}\n"
+    << "motions:\n  v1: {damper: [0, 0, -1]}\nstrategies:\n  down: [v1]\n";
+  return y.str();
+}
+
+double polygon_area(const Face& f) {
+  Vec3 twice = Vec3::Zero();
+  for (std::size_t i = 0; i < f.polygon.size(); ++i)
+    twice += f.polygon[i].cross(f.polygon[(i + 1) % f.polygon.size()]);
+  return 0.5 * std::abs(twice.dot(f.normal));
+}
+
+// n boxes on a grid with gaps of at least 0.5, widths 1 to 1.5 and heights 1 to 2.5, so that planes of
+// some boxes cut others; all strictly inside the returned bounds.
+std::vector<TestBox> disjoint_boxes(int n, Vec3* lo, Vec3* hi) {
+  std::vector<TestBox> boxes;
+  const int side = static_cast<int>(std::ceil(std::sqrt(n)));
+  for (int k = 0; k < n; ++k) {
+    const Vec3 min(2.0 * (k % side), 2.0 * (k / side), 0.5 * (k % 2));
+    const Vec3 size(1.0 + 0.25 * (k % 3), 1.0 + 0.25 * ((k / 3) % 3), 1.0 + 0.5 * (k % 4));
+    boxes.push_back({min, min + size});
+  }
+  *lo = Vec3(-1, -1, -1);
+  *hi = Vec3(2.0 * side, 2.0 * side, 4.0);
+  return boxes;
+}
+
+// Disjoint boxes strictly inside the bounds: the surface is the bounds box plus every box, each a closed
+// convex polyhedron of 6 faces, 12 edges (convex; the bounds' are concave) and 8 vertices.
+TEST(CSpace, DisjointBoxesGiveOneBoxSurfaceEach) {
+  const int n = 300;
+  Vec3 lo, hi;
+  const std::vector<TestBox> boxes = disjoint_boxes(n, &lo, &hi);
+  const CSpace c = CSpace::build(parse_task_string(boxes_yaml(boxes, lo, hi), "boxes.yaml"));
+  EXPECT_EQ(c.faces().size(), 6u * (n + 1));
+  EXPECT_EQ(c.edges().size(), 12u * (n + 1));
+  EXPECT_EQ(c.vertices().size(), 8u * (n + 1));
+  auto shapes = count_shapes(c);
+  EXPECT_EQ(shapes[EdgeShape::kConvex], 12 * n);
+  EXPECT_EQ(shapes[EdgeShape::kConcave], 12);
+  double area = 0, expected = 0;
+  for (const Face& f : c.faces()) {
+    EXPECT_EQ(f.polygon.size(), 4u);
+    area += polygon_area(f);
+  }
+  auto surface = [](const Vec3& d) { return 2 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x()); };
+  for (const TestBox& b : boxes) expected += surface(b.max - b.min);
+  expected += surface(hi - lo);
+  EXPECT_NEAR(area, expected, 1e-9 * expected);
+}
+
+// Overlapping and touching boxes merge: two overlapping boxes of equal cross-section are one box; a box
+// touching a taller one along a face is an L-shaped prism whose two L-shaped sides are split into two
+// convex pieces each, the cut ending on the boundary at a new vertex (T-junction). Its counts follow from
+// Euler's formula V - E + F = 2 with F = 10 (6 rectangles + 2 x 2 pieces) and V = 12 corners + 2 cut ends.
+TEST(CSpace, OverlappingAndTouchingBoxesMerge) {
+  const Vec3 lo(-1, -1, -1), hi(8, 4, 4);
+  const CSpace overlap = CSpace::build(parse_task_string(
+      boxes_yaml({{Vec3(0, 0, 0), Vec3(2, 1, 1)}, {Vec3(1, 0, 0), Vec3(3, 1, 1)}}, lo, hi), "overlap.yaml"));
+  EXPECT_EQ(overlap.faces().size(), 12u);  // the bounds box and one merged box
+  EXPECT_EQ(overlap.edges().size(), 24u);
+  EXPECT_EQ(overlap.vertices().size(), 16u);
+  const CSpace touch = CSpace::build(parse_task_string(
+      boxes_yaml({{Vec3(0, 0, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 2)}}, lo, hi), "touch.yaml"));
+  EXPECT_EQ(touch.faces().size(), 6u + 10u);
+  EXPECT_EQ(touch.vertices().size(), 8u + 14u);
+  EXPECT_EQ(touch.edges().size(), 12u + 22u);
 }
 
 TEST(CSpace, CubeInteriorHasBuckleyCounts) {

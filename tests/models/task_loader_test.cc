@@ -13,12 +13,7 @@
 namespace cmt {
 namespace {
 
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the base task";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+using test::replace;
 
 // Loads and expects a TaskError whose key path and reason contain the given fragments.
 void expect_error(const std::string& yaml, const std::string& key, const std::string& reason) {
@@ -38,7 +33,7 @@ TEST(TaskLoader, LoadsTheHole) {
   const Task& t = lt->task;
   EXPECT_EQ(t.name, "hole");
   EXPECT_EQ(t.units, LengthUnit::kInch);
-  EXPECT_DOUBLE_EQ(t.uncertainty.step, 0.2);  // defaults to eps_p
+  EXPECT_DOUBLE_EQ(t.uncertainty.step, 0.2);  // defaults to eps_p (models/task_ranges.h)
   EXPECT_EQ(t.cspace.size(), 4u);
   EXPECT_DOUBLE_EQ(t.cspace[0].friction, 0.48);
   ASSERT_NE(t.find_strategy("teach"), nullptr);
@@ -63,7 +58,7 @@ TEST(TaskLoader, GoalMayBeAList) {
   EXPECT_EQ(lt->task.goal.size(), 2u);
 }
 
-TEST(TaskLoader, MalformedYaml) { expect_error("name: [unclosed", "line", "malformed YAML"); }
+TEST(TaskLoader, MalformedYaml) { expect_error("name: [unclosed", "name", "malformed YAML"); }
 
 TEST(TaskLoader, UnknownKey) {
   expect_error(replace(test::kHoleYaml, "friction: 0.48", "friction: 0.48\nfrction: 0.3"), "frction",

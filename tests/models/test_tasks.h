@@ -1,9 +1,19 @@
 // Small inline tasks shared by the models tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <string>
 
 namespace cmt::test {
+
+// `text` with the first `from` replaced by `to`; a test-setup failure when `from` is not there.
+inline std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the base task";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
 
 // The inside of a 2 in cube (Buckley §6.3.1) as bounds only.
 inline const std::string kCubeYaml = R"(

@@ -14,6 +14,7 @@
 // the plane with beta(d) while d > h* tan(theta_v) (the zone), and d never exceeds max(d(0), zone).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "verifier/internal/flight.h"
@@ -28,6 +29,15 @@ inline constexpr double kVelocityPointedMargin = 0.05;
 // it the remaining pieces are flown as they are: sound, looser).
 inline constexpr double kVelocityMaxSpread = 0.1;
 inline constexpr int kVelocityMaxPieces = 64;
+// The sizes the cuts aim for scale with eps_s (a piece's bounds blur by about eps_s anyway). With small or
+// zero sensing error (perfect sensing) they scale instead with the spring's via-point step, and never go
+// below kVelocityMinCutRelative of the scene, so that a source is not cut to the piece budget at every level
+// (about 10x the time of eps_s = step on hole `teach`). Cutting less is sound (each piece's bounds hold for
+// any piece), only looser.
+inline constexpr double kVelocityMinCutRelative = 1e-3;
+inline double cutting_eps(const Uncertainty& u, double scene_scale) {
+  return std::max({u.eps_s, u.step, kVelocityMinCutRelative * scene_scale});
+}
 // In-plane directions of the support half-planes bounding a convex set's section by a face plane (an outer
 // polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
 inline constexpr int kVelocitySupportDirections = 32;
