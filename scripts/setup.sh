@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ccache pkg-config clang-format
   libmujoco-dev libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libpng-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtbb-dev libsqlite3-dev libfmt-dev
   libopenmpi-dev openmpi-bin

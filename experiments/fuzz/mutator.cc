@@ -596,7 +596,7 @@ const std::vector<std::string>& mutation_names() {
 }
 
 Mutant make_mutant(const std::vector<SeedTask>& seeds, uint64_t seed, uint64_t index,
-                   const std::vector<std::string>& allowed) {
+                   const std::vector<std::string>& allowed, size_t max_mutations) {
   for (const std::string& name : allowed)
     if (std::find(mutation_names().begin(), mutation_names().end(), name) == mutation_names().end())
       throw std::invalid_argument("unknown mutation '" + name + "'");
@@ -611,7 +611,7 @@ Mutant make_mutant(const std::vector<SeedTask>& seeds, uint64_t seed, uint64_t i
                           ? k.weight
                           : 0.0);
   std::discrete_distribution<size_t> pick(weights.begin(), weights.end());
-  std::vector<size_t> chosen(1 + below(rng, 4));
+  std::vector<size_t> chosen(1 + below(rng, std::max<size_t>(1, max_mutations)));
   for (auto& c : chosen) c = pick(rng);
   // Tree mutations first (on the parsed seed), then text mutations on the written document.
   std::stable_sort(chosen.begin(), chosen.end(), [](size_t a, size_t b) {

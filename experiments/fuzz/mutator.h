@@ -32,10 +32,10 @@ struct Mutant {
 // The generator of input `index` of a run with seed `seed`.
 std::mt19937_64 input_rng(uint64_t seed, uint64_t index);
 
-// Input `index` of the run: a random seed task with 1 to 4 mutations, drawn from `allowed` (mutation names;
-// empty: all of them). Throws std::invalid_argument for a name that is not a mutation.
+// Input `index` of the run: a random seed task with 1 to max_mutations mutations, drawn from `allowed`
+// (mutation names; empty: all of them). Throws std::invalid_argument for a name that is not a mutation.
 Mutant make_mutant(const std::vector<SeedTask>& seeds, uint64_t seed, uint64_t index,
-                   const std::vector<std::string>& allowed = {});
+                   const std::vector<std::string>& allowed = {}, size_t max_mutations = 4);
 
 // The names under the top-level `strategies` key(s) of a parsed task.
 std::vector<std::string> strategy_names(const YamlValue& root);
