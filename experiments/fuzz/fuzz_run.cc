@@ -177,7 +177,7 @@ Summary run_inputs(const RunConfig& config, size_t count,
   std::atomic<size_t> done{0};
   std::atomic<size_t> failed{0};
   std::mutex log;
-  const size_t every = std::max<size_t>(1, count / 20);
+  const size_t every = std::clamp<size_t>(count / 20, 1, 1000);  // long runs report at least every 1,000
   parallel_for(count, config.jobs, [&](size_t i) {
     const InputCase input = make_input(i);
     const std::string file = config.out_dir + "/work/" + input.name + ".yaml";
