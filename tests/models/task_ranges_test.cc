@@ -149,8 +149,13 @@ TEST(YamlDocument, DeepNestingAndSecondDocumentAreNamed) {
     EXPECT_EQ(e.key(), "description") << e.what();
     EXPECT_NE(e.reason().find("nested too deeply"), std::string::npos) << e.what();
   }
-  expect_rejected(test::kHoleYaml + "---\nname: other\n", "", "2 YAML documents");
-  EXPECT_NO_THROW(load_task_from_string("---\n" + test::kHoleYaml, "t.yaml"));
+  expect_rejected(test::kHoleYaml + "---\nname: other\n", "", "more than one YAML document");
+  EXPECT_NO_THROW(load_task_from_string("%YAML 1.2\n---\n" + test::kHoleYaml + "...\n# end\n", "t.yaml"));
+  EXPECT_EQ(second_document_line("# c\n---\na: 1\n---\nb: 2\n"), 4);
+  EXPECT_EQ(second_document_line("a: 1\n...\nb: 2\n"), 3);
+  EXPECT_EQ(second_document_line("a: |\n  ---\n  text\n"), 0);  // indented: inside a block scalar
+  // A stray comma before the first key made yaml-cpp's LoadAll loop for ever (found by cmt-fuzz).
+  expect_rejected(",name: x\nunits: in\n", "", "no value could be read");
 }
 
 }  // namespace
