@@ -9,8 +9,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "experiments/results_store.h"
 #include "experiments/json_text.h"
+#include "experiments/results_store.h"
 
 namespace cmt {
 
@@ -29,7 +29,8 @@ std::string quote(const std::string& field) {
 std::string field(const SqliteStatement& st, int col) {
   if (st.is_null(col)) return "";
   if (st.is_integer(col)) return std::to_string(st.integer(col));
-  if (st.is_real(col)) return json_text(nlohmann::json(st.real(col)));  // shortest text that reads back exactly
+  if (st.is_real(col))
+    return json_text(nlohmann::json(st.real(col)));  // shortest text that reads back exactly
   return quote(st.text(col));
 }
 

@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "experiments/results_schema.h"
 #include "experiments/json_text.h"
+#include "experiments/results_schema.h"
 
 namespace cmt {
 

@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "controllers/random.h"
+#include "experiments/json_text.h"
 #include "experiments/validation.h"
 #include "experiments/verifier_budget.h"
 #include "models/task_error.h"
-#include "experiments/json_text.h"
 
 namespace cmt {
 namespace {

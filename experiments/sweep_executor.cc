@@ -4,10 +4,10 @@
 #include <memory>
 #include <utility>
 
+#include "experiments/json_text.h"
 #include "experiments/unit_record_json.h"
 #include "experiments/verifier_budget.h"
 #include "experiments/verify_command.h"
-#include "experiments/json_text.h"
 
 namespace cmt {
 

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "experiments/json_text.h"
 #include "experiments/sweep_progress.h"
 #include "models/task_error.h"
-#include "experiments/json_text.h"
 
 namespace cmt {
 

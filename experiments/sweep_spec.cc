@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "controllers/random.h"
-#include "models/task_error.h"
-#include "models/yaml_document.h"
-#include "models/task_loader.h"
-#include "models/yaml_node.h"
 #include "experiments/json_text.h"
+#include "models/task_error.h"
+#include "models/task_loader.h"
+#include "models/yaml_document.h"
+#include "models/yaml_node.h"
 
 namespace cmt {
 

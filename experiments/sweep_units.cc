@@ -3,10 +3,10 @@
 #include <regex>
 #include <set>
 
+#include "experiments/json_text.h"
 #include "experiments/stable_hash.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
-#include "experiments/json_text.h"
 
 namespace cmt {
 

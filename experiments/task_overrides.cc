@@ -1,9 +1,10 @@
 #include "experiments/task_overrides.h"
-#include "experiments/json_text.h"
 
 #include <yaml-cpp/yaml.h>
 
 #include <stdexcept>
+
+#include "experiments/json_text.h"
 
 namespace cmt {
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "experiments/json_text.h"
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"
@@ -13,7 +14,6 @@
 #include "experiments/report/sticking_figure.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
-#include "experiments/json_text.h"
 
 namespace cmt::report {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments/verifier_budget.h"
 #include "experiments/json_text.h"
+#include "experiments/verifier_budget.h"
 
 namespace cmt::report {
 namespace {
