@@ -1,6 +1,6 @@
 // The error every bad-input path raises: it names the file, the YAML key path and the reason
-// (docs/task-format.md "Validation"); the cmt program turns it into exit status 2. A YAML syntax error also carries
-// where in the text it is (1-based line and column).
+// (docs/task-format.md "Validation"); the cmt program turns it into exit status 2. A YAML syntax error also
+// carries where in the text it is (1-based line and column).
 #pragma once
 
 #include <stdexcept>
