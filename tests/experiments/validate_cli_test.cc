@@ -44,6 +44,7 @@ TEST(CmtValidate, CubeStickIsSoundAndEveryRolloutSucceeds) {
   for (const char* key : {"reliable", "rollouts", "successes", "outside", "soundness", "coverage"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_TRUE(j["reliable"].get<bool>());
+  EXPECT_FALSE(j["verifier_timed_out"].get<bool>());
   EXPECT_EQ(j["rollouts"], 60);
   EXPECT_EQ(j["successes"], 60);
   EXPECT_EQ(j["unstable"], 0);
@@ -272,16 +273,36 @@ TEST(CmtValidate, StickingTrialsAddThePerAtomTable) {
   EXPECT_EQ(r.status, disagreements > 0 ? 1 : 0);
 }
 
+TEST(CmtValidate, PastTheTimeLimitTheRolloutsRunWithoutAPrediction) {
+  // peg_in_hole_real's teach_too_deep verifies in tens of seconds: 10 ms is not enough. The verifier is
+  // stopped, the rollouts still run and are reported; with no prediction nothing is scored or searched, and
+  // nothing contradicts the verifier (exit 0).
+  const Result r = run("validate " + task("peg_in_hole_real") +
+                       " --strategy teach_too_deep -n 3 --seed 1 --threads 2 --time-limit 0.01 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["verifier_timed_out"].get<bool>());
+  EXPECT_FALSE(j["reliable"].get<bool>());
+  EXPECT_EQ(j["rollouts"], 3);
+  EXPECT_EQ(j["ends_checked"], 0);
+  EXPECT_FALSE(j.contains("search"));
+  EXPECT_NE(j["prediction"]["failure"].get<std::string>().find("timed out after 0.01 s"), std::string::npos)
+      << j["prediction"];
+  EXPECT_EQ(run("validate " + task("cube") + " --strategy stick -n 2 --time-limit 0 --json").status, 2);
+}
+
 TEST(CmtValidate, BadInputExitsWithTwoAndSaysWhy) {
   struct Case {
     std::string args, needle;
   };
-  for (const Case& c : {Case{"validate " + task("cube") + " --strategy nope -n 2 --json", "strategies"},
-                        Case{"validate " + task("cube") + " --strategy stick -n 0 --json", "-n"},
-                        Case{"validate " + task("cube") + " --strategy stick --mode wild --json", "--mode"},
-                        Case{"validate " + task("cube") + " --strategy stick --sticking-trials -1 --json",
-                             "--sticking-trials"},
-                        Case{"validate /nonexistent/x.yaml --strategy stick --json", "x.yaml"}}) {
+  // An unknown strategy is found in the process that runs the validation; its key still reaches the JSON.
+  for (const Case& c :
+       {Case{"validate " + task("cube") + " --strategy nope -n 2 --json", "\"key\": \"strategies\""},
+        Case{"validate " + task("cube") + " --strategy stick -n 0 --json", "-n"},
+        Case{"validate " + task("cube") + " --strategy stick --mode wild --json", "--mode"},
+        Case{"validate " + task("cube") + " --strategy stick --sticking-trials -1 --json",
+             "--sticking-trials"},
+        Case{"validate /nonexistent/x.yaml --strategy stick --json", "x.yaml"}}) {
     const Result r = run(c.args);
     EXPECT_EQ(r.status, 2) << c.args;
     EXPECT_NE(r.out.find(c.needle), std::string::npos) << c.args << "\n" << r.out;
