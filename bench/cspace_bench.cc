@@ -1,5 +1,5 @@
 // C-space construction cost, reported as ratios against a baseline measured in the same run (the YAML parse
-// of the same task), because these machines are shared and noisy (DEVELOPERS.md "Fast").
+// of the same task), because these machines are shared and noisy (docs/verifier-speed.md).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Seeded random streams for Monte Carlo rollouts (DEVELOPERS.md "Reproducible"). Rollout i draws every random
+// Seeded random streams for Monte Carlo rollouts (docs/rollouts.md). Rollout i draws every random
 // number from its own std::mt19937_64, seeded by a SplitMix64 hash of (master seed, i) only, so a rollout's
 // result does not depend on which thread runs it or in which order rollouts are run.
 #pragma once

@@ -59,12 +59,12 @@ void add_calibrate_friction_command(CLI::App& app, CommandState& state) {
       cmd->add_option(
              "--scene", *scene,
              "MuJoCo scene: rollout (default: the rollouts' scene, sim/rollout.h calibrated_scene), "
-             "soft-layer (the same scene) or stiff (sim/rollout.h stiff_scene, the rollouts' scene until "
-             "2026-11-25)")
+             "soft-layer (the same scene) or stiff (sim/rollout.h stiff_scene: stiff contact, off Coulomb "
+             "in concave edges)")
           ->check(CLI::IsMember({"rollout", "soft-layer", "stiff"}));
   auto soft_layer = std::make_shared<bool>(false);
   cmd->add_flag("--soft-layer", *soft_layer,
-                "the soft-surface-layer scene (= --scene soft-layer; the rollouts' scene since 2026-11-25)")
+                "the soft-surface-layer scene (= --scene soft-layer, the rollouts' scene)")
       ->excludes(scene_option);
   cmd->callback([&state, scene, soft_layer] {
     if (*soft_layer) *scene = "soft-layer";

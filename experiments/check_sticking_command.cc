@@ -29,8 +29,8 @@ void add_check_sticking_command(CLI::App& app, CommandState& state) {
       ->check(CLI::IsMember({"face", "edge", "vertex"}));
   cmd->add_option("--scene", options->scene,
                   "MuJoCo scene: soft-layer (default: the rollouts' calibrated scene, Coulomb at concave "
-                  "edges), rollout (the same since 2026-11-25) or stiff (sim/rollout.h stiff_scene, the "
-                  "rollouts' scene before)")
+                  "edges), rollout (the same scene) or stiff (sim/rollout.h stiff_scene: stiff contact, off "
+                  "Coulomb in concave edges)")
       ->check(CLI::IsMember({"soft-layer", "rollout", "stiff"}));
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([options, &state] {

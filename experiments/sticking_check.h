@@ -63,7 +63,7 @@ struct AtomKindFilter {
 // n trials with the task's theta_v, from trial streams derived from (seed, i), in the MuJoCo scene of `sim`
 // (the rollouts' by default). threads >= 1; the result is the same for every thread count.
 // `sim` defaults to the rollouts' own scene (SimOptions{}, sim/rollout.h calibrated_scene()): the one that
-// passes the Coulomb calibration, at concave edges too (docs/rollouts.md; the old stiff scene, stiff_scene(),
+// passes the Coulomb calibration, at concave edges too (docs/rollouts.md; the stiff scene, stiff_scene(),
 // is 73 % off Coulomb's sliding speed there), and a check of Coulomb stick/slide classes needs Coulomb
 // contacts at every atom kind it tests.
 StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n, std::uint64_t seed,

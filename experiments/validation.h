@@ -1,4 +1,4 @@
-// Predicted vs observed (issue 6): the verifier's forward projections of a strategy beside N MuJoCo rollouts
+// Predicted vs observed: the verifier's forward projections of a strategy beside N MuJoCo rollouts
 // of the same strategy under sampled bounded errors. Soundness asks whether every observed motion end lies
 // in the predicted termination set of that motion; coverage asks how much of the predicted set the rollouts
 // actually reached. docs/validation.md defines both, the contact tolerance and the coverage radius.

@@ -53,8 +53,8 @@ inline constexpr double kVelocityWindow = 0.2;
 // passed (the load is then within e^-10 of its final value). Stick/slide is decided from the mean
 // tangential speed over the whole motion (from rest at the start), so a slide that ends while the plan runs
 // is still seen. The slip while the load grows is reported, not scored, as `loading_creep`: over
-// kPositionLoadingWindow after kPositionLoadingStart (via points 4-7 of 10; the calibration's window before
-// 2026-11-25), relative to the via pace.
+// kPositionLoadingWindow after kPositionLoadingStart (via points 4-7 of 10), relative to the via
+// pace.
 inline constexpr double kPositionSettleTimeConstants = 10;
 inline constexpr double kPositionWindow = 0.5;
 inline constexpr double kPositionLoadingStart = 0.5;

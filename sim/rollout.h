@@ -49,7 +49,7 @@ inline MjcfOptions calibrated_scene() {
   return o;
 }
 
-// The rollouts' scene until 2026-11-25, kept for comparisons (`cmt calibrate-friction --scene stiff`,
+// The stiff scene, for comparisons with the rollouts' scene (`cmt calibrate-friction --scene stiff`,
 // `cmt check-sticking --scene stiff`): the exporter's stiff contact (d = 0.99 at every depth) at a 0.5 ms
 // step, with the seam filter. It meets every calibration criterion on a face (sliding within 1.4 % of
 // Coulomb, penetration at 1 in/s <= 6.3e-6 m) but not in a concave edge: sliding there runs up to 73 % off

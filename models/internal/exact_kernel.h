@@ -1,5 +1,5 @@
 // Private to models/: the exact kernel shared by the C-space construction units. Not a public header (CGAL
-// stays out of public headers to keep compile times down; DEVELOPERS.md "Code").
+// stays out of public headers to keep compile times down).
 #pragma once
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>

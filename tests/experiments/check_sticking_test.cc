@@ -1,7 +1,7 @@
 // The physics check of the damper stick/slide classes (cmt check-sticking): MuJoCo must agree with every must
 // and never class the verifier gives. In the check's default scene, the rollouts' own (sim/rollout.h
 // calibrated_scene: the soft surface layer that makes concave edges follow Coulomb, with the seam filter for
-// the T-slot's plate boxes) every atom kind of cube, hole and tslot is checked; in the old stiff scene
+// the T-slot's plate boxes) every atom kind of cube, hole and tslot is checked; in the stiff scene
 // (--scene stiff) faces and vertices (MuJoCo 2.2's stiff contact lets a robot slip along a concave edge
 // where Coulomb friction holds it: docs/rollouts.md).
 #include <gtest/gtest.h>
@@ -39,8 +39,8 @@ TEST(CheckSticking, EveryAtomKindAgreesWithPhysicsInTheCalibratedScene) {
 
 // A trial whose simulation becomes unstable is counted and listed, not classified, and does not end the
 // process. peg_in_hole_real (the hole scaled by 1/40), seed 1: 4 of 400 trials at the edge e9 exceed the
-// penetration tolerance (.03-.07 in against .0044 in); before 2026-11-25 the first of them aborted
-// `cmt check-sticking` and `cmt validate --sticking-trials` (an exception escaping a worker thread).
+// penetration tolerance (.03-.07 in against .0044 in); neither `cmt check-sticking` nor
+// `cmt validate --sticking-trials` may end on them (no exception may escape a worker thread).
 TEST(CheckSticking, UnstableTrialsAreCountedNotFatal) {
   for (const std::string threads : {"1", "2"}) {
     int status = -1;
@@ -76,7 +76,7 @@ TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheStiffScene) {
   }
 }
 
-// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene since 2026-11-25.
+// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene.
 TEST(CheckSticking, RolloutSceneIsTheDefault) {
   int s1 = -1, s2 = -1;
   auto a = run_json("check-sticking " + task("hole") + " -n 120 --seed 3", &s1);

@@ -101,7 +101,7 @@ TEST(CmtRollout, BadInputExitsWithTwoAndNamesTheKey) {
   EXPECT_NE(d.out.find("motions.v2"), std::string::npos) << d.out;
 }
 
-// The calibration passes in the rollouts' scene (issue 3), and fails in the old stiff one (its concave edge).
+// The calibration passes in the rollouts' scene, and fails in the stiff one (its concave edge).
 TEST(CmtCalibrateFriction, ReportsTheCriteria) {
   const Result r = run("calibrate-friction --json");
   EXPECT_EQ(r.status, 0);

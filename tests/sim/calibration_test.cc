@@ -49,7 +49,7 @@ TEST(Calibration, CoversTheGrid) {
             << "), max penetration " << r.max_penetration << " m, " << r.ambiguous << " ambiguous\n";
 }
 
-// Issue 3's done-criterion, in the scene the rollouts use: every scored case meets every criterion.
+// The calibration's acceptance criteria, in the scene the rollouts use: every scored case meets every one.
 TEST(Calibration, PassesInTheRolloutsScene) {
   for (const CalibrationCase& c : result().cases)
     if (c.expected != "ambiguous") {
@@ -165,8 +165,8 @@ TEST(Calibration, PositionFormSticksWithoutCreepAtConstantLoad) {
   EXPECT_EQ(sliding, 18);
 }
 
-// The old stiff scene (stiff_scene(), the rollouts' scene until 2026-11-25) meets every criterion on a face
-// but not in the concave edge: why it is no longer the default (docs/rollouts.md "Concave edges").
+// The stiff scene (stiff_scene()) meets every criterion on a face but not in the concave edge: why the
+// rollouts use the soft-surface-layer scene instead (docs/rollouts.md "Concave edges").
 TEST(Calibration, StiffSceneFailsOnlyAtTheConcaveEdge) {
   const CalibrationResult r = calibrate_friction(
       {ControllerForm::kImpedance, ControllerForm::kAdmittance, ControllerForm::kPosition}, stiff_scene());

@@ -174,7 +174,7 @@ TEST(SpringConvexCorner, DiagonalPullIntoTheBlockIsNotMust) {
   // A convex block corner (mu .48, theta_v .25, eps_s .2), the pull 1.5 in along the diagonal into the block:
   // on the top face the pull's tangential/normal ratio is sqrt 2 > mu, so sliding onto the top (or a side) is
   // a Coulomb solution too. Buckley's summed cone of the three narrowed face cones holds this direction, so
-  // the old strong region called it "must" and the projection stopped at the vertex.
+  // a strong region built from that sum would call it "must" and stop the projection at the vertex.
   const std::string yaml = R"(
 name: corner
 friction: 0.48
