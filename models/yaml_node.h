@@ -1,6 +1,6 @@
 // Strict reading of YAML input files (task files, sweep specs): a YAML node together with its key path, so
 // that every message names the file, the key and the reason (TaskError, exit status 2). Header-only, used by
-// models/task_loader.cc and experiments/sweep_spec.cc; needs yaml-cpp.
+// models/task_loader.cc and experiments/sweep/spec/sweep_spec.cc; needs yaml-cpp.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

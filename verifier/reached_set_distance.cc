@@ -1,5 +1,5 @@
 // ReachedSet::distance (verifier/reached_set.h): how far a point is from a reached set, for comparing
-// observed rollout ends with the verifier's termination sets (experiments/validation.h).
+// observed rollout ends with the verifier's termination sets (experiments/validation/validation.h).
 //
 // Doubles, not exact arithmetic: the answer is compared with a contact tolerance of 1e-4 of the scene scale
 // (validation.h kContactRelativeTolerance), twelve orders of magnitude above the rounding of these formulas.

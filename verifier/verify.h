@@ -92,21 +92,22 @@ struct VerifyResult {
 inline constexpr double kGoalRelativeTolerance = 1e-6;
 
 // How the motions are modelled. The spring model must match the controller form whose rollouts the prediction
-// is compared with (experiments/verifier_model.h): kVelocity for the impedance and admittance forms,
-// kViaPoint (Buckley's App. B) for the position form.
+// is compared with (experiments/validation/verifier_model.h): kVelocity for the impedance and admittance
+// forms, kViaPoint (Buckley's App. B) for the position form.
 struct VerifyOptions {
   SpringModel spring_model = SpringModel::kViaPoint;
   // kappa of a stop rule that also ends a motion where the robot slides slower than kappa times the motion's
   // reference speed (the rollouts' rule: controllers/termination.h kStopRelativeSpeed, passed in by
-  // experiments/verifier_model.h since the verifier does not depend on controllers/). Widens the termination
-  // sets of dampers and of velocity-model springs (docs/verifier.md "Slow slides count as stops"). 0:
-  // termination by Coulomb sticking only, as in the thesis.
+  // experiments/validation/verifier_model.h since the verifier does not depend on controllers/). Widens the
+  // termination sets of dampers and of velocity-model springs (docs/verifier.md "Slow slides count as
+  // stops"). 0: termination by Coulomb sticking only, as in the thesis.
   double stop_relative_speed = 0;
   // How far (task units) a robot sliding on a face may rise off it (docs/verifier.md "Contact lift"). The
   // rollouts' MuJoCo contact gives slip a separating velocity of up to mu x the slip speed, which the servo
   // brings back within its time constant, so a slide into a concave edge may meet the other face up to that
-  // high and stick there (experiments/verifier_model.h derives the bound from the controller's gains). Damper
-  // projections seed that band beside every reached concave edge. 0: Buckley's first-order contact.
+  // high and stick there (experiments/validation/verifier_model.h derives the bound from the controller's
+  // gains). Damper projections seed that band beside every reached concave edge. 0: Buckley's first-order
+  // contact.
   double contact_lift = 0;
 };
 

@@ -1,6 +1,6 @@
 // The predicted termination sets of a strategy, read back from the verifier's JSON (verify_json in
-// experiments/verify_command.cc) for drawing: per motion the pieces it may terminate on. Points come back in
-// 3-D configuration coordinates (a planar task's [x, z] becomes (x, 0, z), as the C-space lifts it).
+// experiments/cli/verify_command.cc) for drawing: per motion the pieces it may terminate on. Points come back
+// in 3-D configuration coordinates (a planar task's [x, z] becomes (x, 0, z), as the C-space lifts it).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "experiments/json_text.h"
+#include "experiments/common/json_text.h"
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"

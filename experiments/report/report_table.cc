@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments/json_text.h"
-#include "experiments/verifier_budget.h"
+#include "experiments/common/json_text.h"
+#include "experiments/common/verifier_budget.h"
 
 namespace cmt::report {
 namespace {
@@ -23,7 +23,7 @@ std::string percent(int part, int whole) {
 
 std::string verdict(const ConfigRow& c) {
   if (!c.prediction) return "pending";
-  // A unit whose verifier ran out of its time budget has no verdict (experiments/verifier_budget.h).
+  // A unit whose verifier ran out of its time budget has no verdict (experiments/common/verifier_budget.h).
   if (c.prediction->failure.rfind(kVerifierTimedOut, 0) == 0) return "verifier timed out";
   return c.prediction->reliable ? "reliable" : "NOT reliable";
 }

@@ -1,7 +1,8 @@
-// Reads a results database written by `cmt sweep` (experiments/results_store.h) for the report, with plain
-// sqlite3 queries against the schema of the results store: runs, configs, predictions, rollouts, metrics.
-// The database is opened read-only, so a report can be made while a sweep is still writing; configurations
-// whose units are not done yet come back with status "pending" and whatever rows they already have.
+// Reads a results database written by `cmt sweep` (experiments/results/results_store.h) for the report, with
+// plain sqlite3 queries against the schema of the results store: runs, configs, predictions, rollouts,
+// metrics. The database is opened read-only, so a report can be made while a sweep is still writing;
+// configurations whose units are not done yet come back with status "pending" and whatever rows they already
+// have.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,7 @@ struct PredictionRow {
   bool reliable = false;
   std::string failure;
   double verify_seconds = 0;   // NaN when NULL
-  nlohmann::json verify_json;  // experiments/verify_command.cc verify_json; null when NULL
+  nlohmann::json verify_json;  // experiments/cli/verify_command.cc verify_json; null when NULL
 };
 
 // One observed motion end (rollouts table). Coordinates are the 3-D configuration (planar tasks: y = 0).
@@ -45,7 +46,7 @@ struct MetricsRow {
   double soundness = 0, coverage = 0, coverage_radius = 0, contact_tolerance = 0;
   bool soundness_bug = false;
   nlohmann::json counterexample;  // null when NULL
-  nlohmann::json sticking;        // experiments/sticking_check.h sticking_check_json; null when NULL
+  nlohmann::json sticking;  // experiments/validation/sticking_check.h sticking_check_json; null when NULL
   double rollout_seconds = 0, verify_seconds = 0;
 };
 

@@ -1,7 +1,7 @@
 // Stick fraction against the command angle, from the per-trial records of the sticking physics check
-// (experiments/sticking_check.h): trials are binned by alpha/phi (the command's angle from the atom's inward
-// direction over the friction angle atan(mu)), one curve per atom kind, and behind the curves the verifier's
-// classes that occur in each bin (must / may / never stick) are shaded as bands.
+// (experiments/validation/sticking_check.h): trials are binned by alpha/phi (the command's angle from the
+// atom's inward direction over the friction angle atan(mu)), one curve per atom kind, and behind the curves
+// the verifier's classes that occur in each bin (must / may / never stick) are shaded as bands.
 #pragma once
 
 #include <nlohmann/json.hpp>

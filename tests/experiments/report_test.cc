@@ -28,7 +28,7 @@ using nlohmann::json;
 constexpr int kFigureWidth = 1000;
 constexpr int kFigureHeight = 720;
 
-// The results-store schema (experiments/results_store.h).
+// The results-store schema (experiments/results/results_store.h).
 constexpr const char* kSchema = R"sql(
 CREATE TABLE runs(run_id INTEGER PRIMARY KEY, spec_path TEXT, spec_text TEXT, created TEXT);
 CREATE TABLE configs(config_id INTEGER PRIMARY KEY, run_id INTEGER, unit_key TEXT UNIQUE NOT NULL,

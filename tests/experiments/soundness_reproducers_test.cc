@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "experiments/soundness_campaign.h"
-#include "experiments/validation.h"
+#include "experiments/validation/soundness_campaign.h"
+#include "experiments/validation/validation.h"
 
 namespace cmt {
 namespace {

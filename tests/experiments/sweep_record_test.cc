@@ -1,9 +1,9 @@
-// unit_record (experiments/sweep_executor.h): a validation result turned into the rows of the results store,
-// checked on a hand-built result: one row per motion of every rollout, each motion starting where the
+// unit_record (experiments/sweep/sweep_executor.h): a validation result turned into the rows of the results
+// store, checked on a hand-built result: one row per motion of every rollout, each motion starting where the
 // previous one ended, scored ends carrying inside/distance and unscored ones NULL.
 #include <gtest/gtest.h>
 
-#include "experiments/sweep_executor.h"
+#include "experiments/sweep/sweep_executor.h"
 #include "tests/experiments/sweep_test_util.h"
 
 namespace cmt {

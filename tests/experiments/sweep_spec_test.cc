@@ -1,6 +1,6 @@
 // Sweep specs (docs/sweeps.md): strict parsing with file/key/reason errors, override values checked by the
 // task loader, the expansion into units (order, counts, stable keys), random draws and shards.
-#include "experiments/sweep_spec.h"
+#include "experiments/sweep/spec/sweep_spec.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <set>
 
 #include "controllers/random.h"
-#include "experiments/stable_hash.h"
-#include "experiments/sweep_units.h"
+#include "experiments/sweep/spec/stable_hash.h"
+#include "experiments/sweep/spec/sweep_units.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
 #include "tests/experiments/sweep_test_util.h"

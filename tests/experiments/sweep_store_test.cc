@@ -5,11 +5,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "experiments/results_store.h"
-#include "experiments/sweep_mpi.h"
-#include "experiments/sweep_runner.h"
-#include "experiments/sweep_spec.h"
-#include "experiments/sweep_units.h"
+#include "experiments/results/results_store.h"
+#include "experiments/sweep/mpi/sweep_mpi.h"
+#include "experiments/sweep/spec/sweep_spec.h"
+#include "experiments/sweep/spec/sweep_units.h"
+#include "experiments/sweep/sweep_runner.h"
 #include "tests/experiments/sweep_test_util.h"
 
 namespace cmt {

@@ -1,5 +1,5 @@
-// The scoring of `cmt validate` (experiments/validation.h) on synthetic predictions and rollouts, with
-// every expected number derived by hand in the comments: soundness counting (inside/outside the contact
+// The scoring of `cmt validate` (experiments/validation/validation.h) on synthetic predictions and rollouts,
+// with every expected number derived by hand in the comments: soundness counting (inside/outside the contact
 // tolerance, time-outs, unstable rollouts, motions after the verifier's failed step, a spring's free rest
 // ball), coverage radii and fractions (area, length, points), and the replay command line.
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 #include <numbers>
 #include <string>
 
-#include "experiments/piece_geometry.h"
-#include "experiments/validation.h"
+#include "experiments/validation/piece_geometry.h"
+#include "experiments/validation/validation.h"
 
 namespace cmt {
 namespace {

@@ -1,8 +1,8 @@
-// The verifier time budget (experiments/verifier_budget.h): a forked child that reports the end of its
+// The verifier time budget (experiments/common/verifier_budget.h): a forked child that reports the end of its
 // budgeted phase in time returns its result, one that does not is killed at the deadline, a child's
 // exception reaches the parent with its message; and a unit record survives the trip through the pipe bit
-// for bit (experiments/unit_record_json.h), infinities and NULLs included.
-#include "experiments/verifier_budget.h"
+// for bit (experiments/results/unit_record_json.h), infinities and NULLs included.
+#include "experiments/common/verifier_budget.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <thread>
 
-#include "experiments/unit_record_json.h"
+#include "experiments/results/unit_record_json.h"
 #include "models/task_error.h"
 
 namespace cmt {

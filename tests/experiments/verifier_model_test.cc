@@ -1,8 +1,8 @@
-// The verifier's velocity-direction bound per controller form (experiments/verifier_model.h): the extra
-// angle of the admittance form's sensed-force feedback against hand-computed values, the widened task it
-// verifies on, and the forms that keep the task's theta_v. End to end: two_blocks `slide`, reliable for the
-// impedance form, is unreliable for the admittance form (its concave edge may no longer stick).
-#include "experiments/verifier_model.h"
+// The verifier's velocity-direction bound per controller form (experiments/validation/verifier_model.h): the
+// extra angle of the admittance form's sensed-force feedback against hand-computed values, the widened task
+// it verifies on, and the forms that keep the task's theta_v. End to end: two_blocks `slide`, reliable for
+// the impedance form, is unreliable for the admittance form (its concave edge may no longer stick).
+#include "experiments/validation/verifier_model.h"
 
 #include <gtest/gtest.h>
 

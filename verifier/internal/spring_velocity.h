@@ -52,7 +52,7 @@ std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, d
 // What one velocity-form spring motion shares across its flights and slides.
 struct VelocitySpring {
   Vec3 p;            // commanded position
-  Uncertainty u;     // theta_v (possibly widened, experiments/verifier_model.h) and eps_s are used
+  Uncertainty u;     // theta_v (possibly widened, experiments/validation/verifier_model.h) and eps_s are used
   double reach = 0;  // every point of the motion lies within this distance of p (velocity_reach_bound)
   std::vector<HalfSpace> bounds;  // every point of the motion lies in these (velocity_invariant_half_spaces)
 };

@@ -1,0 +1,219 @@
+// cmt rollout: Monte Carlo rollouts of a strategy in MuJoCo (sim/rollout.h, docs/rollouts.md).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "experiments/cli/cli_output.h"
+#include "experiments/cli/command.h"
+#include "experiments/cli/rollout_cli.h"
+#include "models/task_error.h"
+#include "sim/rollout.h"
+
+namespace cmt {
+
+namespace {
+
+std::string atom_kind_or_free(const CSpace& c, int atom) {
+  return atom < 0 ? "free" : atom_kind_name(c.atom_kind(atom));
+}
+
+nlohmann::json motion_json(const LoadedTask& lt, const MotionOutcome& m) {
+  const int dim = lt.task.dimension;
+  return {{"motion", m.motion},
+          {"end", point_json(m.end, dim)},
+          {"atom", m.atom},
+          {"atom_name", m.atom < 0 ? "free" : lt.cspace.atom_name(m.atom)},
+          {"kind", atom_kind_or_free(lt.cspace, m.atom)},
+          {"termination", termination_name(m.termination)},
+          {"contact_force", {m.contact_force.x(), m.contact_force.y(), m.contact_force.z()}},
+          {"sim_time", m.sim_time},
+          {"steps", m.steps},
+          {"max_penetration", m.max_penetration},
+          {"velocity_switches", m.velocity_switches},
+          {"replans", m.replans},
+          {"node", m.node},
+          {"branch", m.branch}};
+}
+
+nlohmann::json outcome_json(const LoadedTask& lt, const RolloutOutcome& r) {
+  const int dim = lt.task.dimension;
+  nlohmann::json motions = nlohmann::json::array();
+  for (const MotionOutcome& m : r.motions) motions.push_back(motion_json(lt, m));
+  nlohmann::json j = {{"index", r.index},
+                      {"start", point_json(r.start, dim)},
+                      {"end", point_json(r.end, dim)},
+                      {"atom", r.atom},
+                      {"atom_name", r.atom < 0 ? "free" : lt.cspace.atom_name(r.atom)},
+                      {"kind", atom_kind_or_free(lt.cspace, r.atom)},
+                      {"termination", termination_name(r.termination)},
+                      {"success", r.success},
+                      {"unstable", r.unstable},
+                      {"motions", motions}};
+  if (r.unstable) j["unstable_reason"] = r.unstable_reason;
+  if (r.no_branch) j["no_branch"] = true;  // a conditional test passed no branch (no 'else')
+  return j;
+}
+
+void write_csv(const std::filesystem::path& file, const LoadedTask& lt,
+               const std::vector<RolloutOutcome>& rs) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write CSV file '" + file.string() + "'");
+  out.precision(17);
+  out << "rollout,success,unstable,start_x,start_y,start_z,motion_index,motion,end_x,end_y,end_z,atom,atom_"
+         "name,"
+         "kind,termination,contact_force_x,contact_force_y,contact_force_z,sim_time,steps,max_penetration\n";
+  for (const RolloutOutcome& r : rs)
+    for (std::size_t i = 0; i < r.motions.size(); ++i) {
+      const MotionOutcome& m = r.motions[i];
+      out << r.index << ',' << r.success << ',' << r.unstable << ',' << r.start.x() << ',' << r.start.y()
+          << ',' << r.start.z() << ',' << i << ',' << m.motion << ',' << m.end.x() << ',' << m.end.y() << ','
+          << m.end.z() << ',' << m.atom << ',' << (m.atom < 0 ? "free" : lt.cspace.atom_name(m.atom)) << ','
+          << atom_kind_or_free(lt.cspace, m.atom) << ',' << termination_name(m.termination) << ','
+          << m.contact_force.x() << ',' << m.contact_force.y() << ',' << m.contact_force.z() << ','
+          << m.sim_time << ',' << m.steps << ',' << m.max_penetration << '\n';
+    }
+  if (!out) throw std::runtime_error("cannot write CSV file '" + file.string() + "': write failed");
+}
+
+void write_trajectories(const std::filesystem::path& file, const std::vector<RolloutOutcome>& rs) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write trajectory file '" + file.string() + "'");
+  out.precision(10);
+  out << "rollout,time,motion,x,y,z,sensed_x,sensed_y,sensed_z,contact\n";
+  for (const RolloutOutcome& r : rs)
+    for (const TrajectoryPoint& p : r.trajectory)
+      out << r.index << ',' << p.time << ',' << p.motion << ',' << p.position.x() << ',' << p.position.y()
+          << ',' << p.position.z() << ',' << p.sensed.x() << ',' << p.sensed.y() << ',' << p.sensed.z() << ','
+          << p.contact << '\n';
+  if (!out) throw std::runtime_error("cannot write trajectory file '" + file.string() + "': write failed");
+}
+
+// A one-line progress bar, redrawn in place (only when stderr is a terminal).
+void draw_progress(int done, int total, std::chrono::steady_clock::time_point start) {
+  const int width = 40;
+  const int filled = total > 0 ? width * done / total : width;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "\r[%s%s] %d/%d rollouts, %.1f s", std::string(filled, '#').c_str(),
+               std::string(width - filled, ' ').c_str(), done, total, seconds);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+void add_rollout_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories;
+    int n = 100;
+    std::uint64_t seed = 1;
+    int threads = 0;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("rollout", "Monte Carlo MuJoCo rollouts of a strategy under sampled errors");
+  cmd->add_option("TASK", o->task, "task YAML file")->required();
+  cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
+  add_rollout_sampling_options(cmd, o->n, o->seed, o->threads, o->mode);
+  cmd->add_option(
+         "--controller", o->controller,
+         "controller form: admittance (Buckley eq. 3.23/3.24), impedance, or position (eq. 3.25, springs)")
+      ->check(CLI::IsMember({"admittance", "impedance", "position"}))
+      ->capture_default_str();
+  cmd->add_option("--csv", o->csv, "also write one CSV row per rollout and motion to this file");
+  cmd->add_option("--trajectories", o->trajectories,
+                  "also record trajectories (every 10 steps) to this CSV file");
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([o, &state] {
+    check_rollout_sampling_options(o->n, o->threads);
+    const auto task = load_task(o->task);
+    const Strategy* strategy = task->task.find_strategy(o->strategy);
+    if (strategy == nullptr) {
+      std::string known;
+      for (const Strategy& s : task->task.strategies) known += (known.empty() ? "" : ", ") + s.name;
+      throw TaskError(task->task.source_file, "strategies",
+                      "unknown strategy '" + o->strategy + "' (the task has: " + known + ")");
+    }
+    SimOptions options;
+    options.form = *parse_controller_form(o->controller);
+    options.mode = *parse_sample_mode(o->mode);
+    options.record_trajectory = !o->trajectories.empty();
+    if (options.form == ControllerForm::kPosition)
+      for (const std::string& name : strategy->motions) {
+        const Motion* m = task->task.find_motion(name);
+        if (m != nullptr && m->kind == Motion::Kind::kDamper)
+          throw TaskError(task->task.source_file, "motions." + name,
+                          "--controller position implements generalized springs only (Buckley eq. 3.25); '" +
+                              name + "' is a damper");
+      }
+    const int threads =
+        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const auto start = std::chrono::steady_clock::now();
+    const auto scene = RolloutScene::build(task, options);
+    std::function<void(int)> progress;
+    const bool bar = isatty(STDERR_FILENO);
+    if (bar) progress = [&](int done) { draw_progress(done, o->n, start); };
+    const std::vector<RolloutOutcome> results =
+        run_rollouts(scene, *strategy, o->n, o->seed, threads, progress);
+    if (bar) std::fprintf(stderr, "\n");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    int successes = 0, unstable = 0;
+    long steps = 0;
+    double max_penetration = 0, sim_time = 0;
+    std::map<std::string, int> terminations, end_atoms;
+    nlohmann::json outcomes = nlohmann::json::array();
+    for (const RolloutOutcome& r : results) {
+      successes += r.success;
+      unstable += r.unstable;
+      ++terminations[termination_name(r.termination)];
+      ++end_atoms[r.atom < 0 ? "free" : task->cspace.atom_name(r.atom)];
+      for (const MotionOutcome& m : r.motions) {
+        steps += m.steps;
+        sim_time += m.sim_time;
+        max_penetration = std::max(max_penetration, m.max_penetration);
+      }
+      outcomes.push_back(outcome_json(*task, r));
+    }
+    if (!o->csv.empty()) write_csv(o->csv, *task, results);
+    if (!o->trajectories.empty()) write_trajectories(o->trajectories, results);
+    const int n = o->n;
+    nlohmann::json j = {
+        {"task", task->task.name},
+        {"strategy", strategy->name},
+        {"controller", controller_form_name(options.form)},
+        {"mode", sample_mode_name(options.mode)},
+        {"seed", o->seed},
+        {"threads", threads},
+        {"rollouts", n},
+        {"successes", successes},
+        {"failures", n - successes - unstable},
+        {"unstable", unstable},
+        {"success_rate", static_cast<double>(successes) / n},
+        {"terminations", terminations},
+        {"end_atoms", end_atoms},
+        {"max_penetration", max_penetration},
+        {"max_penetration_m", max_penetration * scene->meters_per_unit()},
+        {"atom_tolerance", scene->atom_tolerance()},
+        {"timestep", scene->timestep()},
+        {"sim_time", sim_time},
+        {"steps", steps},
+        {"seconds", seconds},
+        {"steps_per_second", seconds > 0 ? steps / seconds : 0.0},
+        {"outcomes", outcomes},
+    };
+    if (state.json) {
+      print_json(j);
+    } else {
+      std::cout << task->task.name << " / " << strategy->name << " (" << controller_form_name(options.form)
+                << ", " << sample_mode_name(options.mode) << ", seed " << o->seed << "): " << successes << "/"
+                << n << " succeeded, " << unstable << " unstable, " << seconds << " s\n";
+    }
+    state.exit_status = successes == n ? kExitSuccess : kExitFailureFound;
+  });
+}
+
+}  // namespace cmt

@@ -1,0 +1,186 @@
+// `cmt validate TASK --strategy NAME -n N --seed S [--threads T] [--mode uniform|extreme]
+// [--controller impedance|admittance|position] [--sticking-trials K] [--ends] [--time-limit T] --json`: the
+// verifier's prediction against MuJoCo rollouts (experiments/validation/validation.h, docs/validation.md).
+// Exit 0 when physics agrees with the prediction, 1 when it contradicts it (an end outside the predicted set,
+// a failure of a strategy verified reliable, a stick/slide disagreement), 2 on bad input. The verifier runs
+// under the wall-clock limit T, as in `cmt verify`: past it the rollouts run without a prediction
+// (verifier_timed_out: true).
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "experiments/cli/cli_output.h"
+#include "experiments/cli/command.h"
+#include "experiments/cli/rollout_cli.h"
+#include "experiments/cli/verify_command.h"
+#include "experiments/common/json_text.h"
+#include "experiments/common/verifier_budget.h"
+#include "experiments/validation/validation.h"
+#include "models/task_error.h"
+
+namespace cmt {
+namespace {
+
+std::string point(const Vec3& p) {
+  std::ostringstream os;
+  os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return os.str();
+}
+
+// The task file's text; a missing file is bad input naming it (like load_task).
+std::string read_task_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw TaskError(path, "", "cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+void print_summary(std::ostream& os, const ValidationResult& r) {
+  os << r.task << " / " << r.strategy << ": verifier says "
+     << (r.prediction.reliable ? "reliable" : "NOT reliable") << "; " << r.successes << "/"
+     << r.rollouts.size() << " rollouts succeeded (" << r.unstable << " unstable)\n"
+     << "  soundness " << r.soundness << " (" << r.outside << " of " << r.ends.size()
+     << " motion ends outside the predicted sets, tolerance " << r.contact_tolerance << ")\n"
+     << "  coverage " << r.coverage << " (radius " << r.coverage_radius << ")\n"
+     << "  verifier theta_v " << r.verifier.theta_v << ": " << r.verifier.reason << "\n";
+  if (r.options.verifier_timed_out_after > 0) os << "  " << r.prediction.failure << "\n";
+  for (const ObservedEnd& e : r.worst)
+    os << "  outside: rollout " << e.rollout << " motion " << r.prediction.steps[e.motion].motion << " end "
+       << point(e.end) << " at distance " << e.distance << "\n";
+  if (!r.unexpected_timeouts.empty())
+    os << "  " << r.unexpected_timeouts.size()
+       << " motions timed out where the verifier predicted termination\n";
+  if (r.search.ran) os << "  search: " << r.search.note << "\n";
+  if (r.soundness_bug) os << "  SOUNDNESS BUG: verified reliable, yet a rollout failed\n";
+  if (r.counterexample)
+    os << "  counterexample (" << r.counterexample->how << "): " << r.counterexample->replay << "\n";
+  if (r.sticking)
+    os << "  sticking: " << r.sticking->trials << " trials, " << r.sticking->disagreements << " disagreements"
+       << (r.sticking->unstable > 0 ? ", " + std::to_string(r.sticking->unstable) + " unstable"
+                                    : std::string())
+       << "\n";
+}
+
+// What the command prints and its exit status, made in the process that ran the validation.
+struct ValidateOutput {
+  std::string out, err;
+  int exit_status = kExitSuccess;
+};
+
+ValidateOutput render(const LoadedTask& task, const ValidationResult& r, bool json, bool with_ends) {
+  std::ostringstream out, err;
+  if (r.soundness_bug)
+    err << "\n*** SOUNDNESS BUG: the verifier says '" << r.strategy << "' is reliable, but rollout "
+        << r.counterexample->index << " failed. Replay it with:\n***   " << r.counterexample->replay
+        << "\n\n";
+  if (r.outside > 0)
+    err << "*** " << r.outside << " motion ends lie outside the predicted termination sets (farthest "
+        << r.worst.front().distance << ")\n";
+  if (json) {
+    out << json_text(validation_json(task, r, with_ends), 2) << "\n";
+  } else {
+    print_summary(out, r);
+  }
+  return {out.str(), err.str(), contradicts_verifier(r) ? kExitFailureFound : kExitSuccess};
+}
+
+// The validation in a forked child whose verifier phase has `time_limit` seconds (verifier_budget.h); past
+// it, the child is killed and the rollouts run here without a prediction. A TaskError in the child comes
+// back whole (file, key, reason, place), so bad input still names its key.
+ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask>& task,
+                                          const std::string& text, const std::string& strategy,
+                                          ValidateOptions options, double time_limit, bool json,
+                                          bool with_ends) {
+  const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
+    nlohmann::json payload;
+    try {
+      ValidateOptions o = options;
+      o.after_verify = phase_done;
+      const ValidateOutput v = render(*task, run_validation(task, text, strategy, o), json, with_ends);
+      payload = {{"out", v.out}, {"err", v.err}, {"exit_status", v.exit_status}};
+    } catch (const TaskError& e) {
+      payload = {{"task_error",
+                  {{"file", e.file()},
+                   {"key", e.key()},
+                   {"reason", e.reason()},
+                   {"line", e.where().line},
+                   {"column", e.where().column}}}};
+    }
+    return json_text(payload);
+  });
+  if (run.timed_out) {
+    options.verifier_timed_out_after = time_limit;
+    return render(*task, run_validation(task, text, strategy, options), json, with_ends);
+  }
+  const nlohmann::json payload = nlohmann::json::parse(run.payload);
+  if (payload.contains("task_error")) {
+    const nlohmann::json& e = payload["task_error"];
+    throw TaskError(e["file"], e["key"], e["reason"], TextLocation{e["line"], e["column"]});
+  }
+  return {payload["out"], payload["err"], payload["exit_status"]};
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, mode = "uniform", controller = "impedance";
+    int n = 1000, threads = 0, sticking_trials = 0, budget = ValidateOptions{}.counterexample_budget;
+    double time_limit = kDefaultVerifyTimeLimit;
+    std::uint64_t seed = 1;
+    bool ends = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("validate", "Compare the verifier's prediction with MuJoCo rollouts");
+  cmd->add_option("TASK", o->task, "task YAML file")->required();
+  cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
+  add_rollout_sampling_options(cmd, o->n, o->seed, o->threads, o->mode);
+  cmd->add_option("--controller", o->controller,
+                  "controller form: impedance (default; the verifier's model), admittance (verified with "
+                  "theta_v widened by the sensed-force error), or position (springs)")
+      ->check(CLI::IsMember({"admittance", "impedance", "position"}))
+      ->capture_default_str();
+  cmd->add_option("--sticking-trials", o->sticking_trials,
+                  "also run this many stick/slide trials (cmt check-sticking) and add the per-atom table")
+      ->capture_default_str();
+  cmd->add_option("--search-budget", o->budget,
+                  "extra rollouts for the counterexample search when the verifier says unreliable and no "
+                  "rollout failed")
+      ->capture_default_str();
+  cmd->add_flag("--ends", o->ends, "list every observed motion end in the JSON");
+  cmd->add_option("--time-limit", o->time_limit,
+                  "wall-clock seconds the verifier may run (default " +
+                      std::to_string(kDefaultVerifyTimeLimit) +
+                      "); beyond, the rollouts run without a prediction (verifier_timed_out: true)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([o, &state] {
+    check_rollout_sampling_options(o->n, o->threads);
+    if (o->sticking_trials < 0)
+      throw CLI::ValidationError("--sticking-trials",
+                                 "must be >= 0, got " + std::to_string(o->sticking_trials));
+    if (o->budget < 0)
+      throw CLI::ValidationError("--search-budget", "must be >= 0, got " + std::to_string(o->budget));
+    // The text is kept: the admittance form re-loads it with a widened theta_v (verifier_model.h).
+    const std::string text = read_task_text(o->task);
+    const auto task = load_task_from_string(text, o->task);
+    ValidateOptions options;
+    options.n = o->n;
+    options.seed = o->seed;
+    options.threads =
+        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    options.mode = *parse_sample_mode(o->mode);
+    options.form = *parse_controller_form(o->controller);
+    options.sticking_trials = o->sticking_trials;
+    options.counterexample_budget = o->budget;
+    const ValidateOutput v =
+        validate_within_time_limit(task, text, o->strategy, options, o->time_limit, state.json, o->ends);
+    std::cerr << v.err;
+    std::cout << v.out;
+    state.exit_status = v.exit_status;
+  });
+}
+
+}  // namespace cmt

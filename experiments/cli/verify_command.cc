@@ -1,0 +1,141 @@
+#include "experiments/cli/verify_command.h"
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "controllers/termination.h"
+#include "experiments/cli/cli_output.h"
+#include "experiments/cli/command.h"
+#include "experiments/common/json_text.h"
+#include "experiments/common/verifier_budget.h"
+#include "experiments/validation/verifier_model.h"
+#include "experiments/validation/verify_json.h"
+#include "models/task_error.h"
+
+namespace cmt {
+namespace {
+
+// The verification in a forked child under the wall-clock limit (experiments/common/verifier_budget.h: the
+// verifier has no cancellation points, so only a separate process can be stopped). Returns verify_json, the
+// time-out answer, or {"error": message} for a motion the verifier does not support (bad input).
+nlohmann::json verify_within_time_limit(const LoadedTask& task, const Strategy& strategy,
+                                        const VerifyOptions& options, double time_limit, bool with_reached,
+                                        std::chrono::steady_clock::time_point start) {
+  const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
+    nlohmann::json out;
+    try {
+      const VerifyResult result = verify_strategy(task, strategy, options);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      out = verify_json(task, result, seconds, with_reached);
+      out["timed_out"] = false;
+    } catch (const UnsupportedMotion& e) {
+      out = {{"error", e.what()}};
+    }
+    phase_done();
+    return json_text(out);
+  });
+  if (!run.timed_out) return nlohmann::json::parse(run.payload);
+  std::ostringstream failure;
+  failure << kVerifierTimedOut << " after " << time_limit << " s (--time-limit)";
+  return {{"task", task.task.name},
+          {"reliable", false},
+          {"timed_out", true},
+          {"time_limit", time_limit},
+          {"failure", failure.str()},
+          {"failed_step", -1},
+          {"steps", nlohmann::json::array()},
+          {"outside_goal", nlohmann::json::array()},
+          {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+          {"spring_model", spring_model_name(options.spring_model)},
+          {"stop_relative_speed", options.stop_relative_speed},
+          {"contact_lift", options.contact_lift}};
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, motion;
+    bool reached = false;
+    SpringModel spring_model = SpringModel::kVelocity;
+    double stop_relative_speed = kStopRelativeSpeed;
+    double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
+    double time_limit = kDefaultVerifyTimeLimit;
+  };
+  auto options = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
+  cmd->add_option("TASK", options->task, "task YAML file")->required();
+  auto* strategy =
+      cmd->add_option("--strategy", options->strategy, "strategy name (from the task's strategies)");
+  auto* motion = cmd->add_option("--motion", options->motion, "a single motion from the task's start");
+  strategy->excludes(motion);
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->add_flag("--reached", options->reached, "also list every reached contact point per motion");
+  cmd->add_option("--spring-model", options->spring_model,
+                  "spring trajectory model: velocity (the impedance/admittance forms: sensing offset fixed "
+                  "during a motion; default) or via-point (Buckley App. B, the position form)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, SpringModel>{{"velocity", SpringModel::kVelocity},
+                                                                     {"via-point", SpringModel::kViaPoint}},
+                                  CLI::ignore_case));
+  cmd->add_option(
+         "--stop-relative-speed", options->stop_relative_speed,
+         "kappa of the stop rule: a slide slower than kappa x the motion's reference speed counts as "
+         "a stop, as in the rollouts (default " +
+             std::to_string(kStopRelativeSpeed) + "); 0 = Coulomb sticking only (the thesis)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--contact-lift", options->contact_lift,
+                  "how far (task units) a sliding robot may rise off a face (a slide into a concave edge may "
+                  "meet the other face that high); default: the rollouts' MuJoCo scene, (m/b) mu_max V "
+                  "(docs/verifier.md \"Contact lift\"); 0 = Buckley's first-order contact")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--time-limit", options->time_limit,
+                  "wall-clock seconds the verifier may run (default " +
+                      std::to_string(kDefaultVerifyTimeLimit) +
+                      "); beyond, the answer is not reliable with timed_out: true (exit 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->callback([options, &state] {
+    const auto start = std::chrono::steady_clock::now();
+    const auto task = load_task(options->task);
+    Strategy strategy;
+    if (!options->strategy.empty()) {
+      const Strategy* s = task->task.find_strategy(options->strategy);
+      if (!s)
+        throw TaskError(task->task.source_file, "strategies",
+                        "no strategy named '" + options->strategy + "'");
+      strategy = *s;
+    } else if (!options->motion.empty()) {
+      strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: TaskError (verify.h)
+    } else {
+      throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
+    }
+    const VerifyOptions verify_options{
+        options->spring_model, options->stop_relative_speed,
+        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)};
+    const nlohmann::json j = verify_within_time_limit(*task, strategy, verify_options, options->time_limit,
+                                                      options->reached, start);
+    if (j.contains("error")) {
+      state.exit_status = report_bad_input(j["error"].get<std::string>(), state.json);
+      return;
+    }
+    const bool reliable = j["reliable"].get<bool>();
+    if (state.json) {
+      print_json(j);
+    } else {
+      std::cout << task->task.name << ": " << (reliable ? "reliable" : "NOT reliable") << "\n";
+      for (const auto& s : j["steps"]) {
+        std::cout << "  "
+                  << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
+                  << s["motion"].get<std::string>() << " terminates on:";
+        for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
+        std::cout << "\n";
+      }
+      if (!reliable) std::cout << "  " << j["failure"].get<std::string>() << "\n";
+    }
+    state.exit_status = reliable ? kExitSuccess : kExitFailureFound;
+  });
+}
+
+}  // namespace cmt

@@ -1,0 +1,13 @@
+// `cmt verify TASK --strategy NAME --json` (contracts.md) and `cmt verify TASK --motion NAME --json` (one
+// motion from the task's start): Buckley's verifier for decision-free strategies of generalized-damper
+// motions. Fields: reliable, steps (motion, termination = [{atom, kind, polygon}]), seconds; when unreliable
+// also failed_step, failure and outside_goal (the offending termination pieces). The verifier runs under a
+// wall-clock limit (--time-limit, default kDefaultVerifyTimeLimit): every answer has timed_out, and one that
+// ran out of time is not reliable, with timed_out true, time_limit, an empty steps list and exit status 1.
+#pragma once
+
+namespace cmt {
+
+inline constexpr double kDefaultVerifyTimeLimit = 600;  // seconds
+
+}  // namespace cmt

@@ -1,0 +1,402 @@
+#include "experiments/validation/soundness_campaign.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "controllers/random.h"
+#include "experiments/common/json_text.h"
+#include "experiments/common/verifier_budget.h"
+#include "experiments/validation/validation.h"
+#include "models/task_error.h"
+
+namespace cmt {
+namespace {
+
+// Generation ranges (docs/validation.md "Random-task soundness campaign"), lengths in physical inches before
+// the task's scale and unit factors.
+constexpr double kMinFriction = 0.1, kMaxFriction = 0.8;
+constexpr double kMinThetaV = 0.02, kMaxThetaV = 0.3;
+constexpr double kMinEps = 0.01, kMaxEps = 0.2;
+constexpr double kFarOffsetMin = 50, kFarOffsetMax = 3000;
+// Draws per task before giving up on one whose start or goal does not lie on the contact surface.
+constexpr int kGenerationAttempts = 20;
+
+// A generated scene in task units: the data the YAML is written from (and that minimization edits).
+struct Scene {
+  std::string units = "in";
+  double mu = 0.5;
+  Uncertainty u;
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounds; the floor is z = lo.z
+  std::vector<AxisBox> boxes;                 // C-space obstacles standing on the floor
+  std::string start_kind = "point";           // point | segment | polygon
+  std::vector<Vec3> start;
+  std::vector<std::vector<Vec3>> goal;  // regions: 1 point, or a polygon
+  bool spring = false;
+  Vec3 command = Vec3::Zero();  // spring target or damper direction
+};
+
+std::string num(double x) {
+  std::ostringstream os;
+  os << std::setprecision(12) << x;
+  return os.str();
+}
+
+std::string vec(const Vec3& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; }
+
+std::string points(const std::vector<Vec3>& pts) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < pts.size(); ++i) s += (i ? ", " : "") + vec(pts[i]);
+  return s + "]";
+}
+
+std::string region(const std::string& kind, const std::vector<Vec3>& pts) {
+  return "{" + kind + ": " + (kind == "point" ? vec(pts[0]) : points(pts)) + "}";
+}
+
+std::string to_yaml(const Scene& s, int index, const std::string& description) {
+  std::ostringstream y;
+  y << "name: campaign-" << index << "\n";
+  y << "description: \"" << description << "\"\n";
+  y << "units: " << s.units << "\nfriction: " << num(s.mu) << "\n";
+  y << "uncertainty: {eps_s: " << num(s.u.eps_s) << ", eps_p: " << num(s.u.eps_p)
+    << ", theta_v: " << num(s.u.theta_v) << ", theta_f: " << num(s.u.theta_f) << "}\n";
+  y << "cspace:";
+  if (s.boxes.empty()) y << " []";
+  y << "\n";
+  for (const AxisBox& b : s.boxes) y << "  - box: {min: " << vec(b.min) << ", max: " << vec(b.max) << "}\n";
+  y << "bounds: {min: " << vec(s.lo) << ", max: " << vec(s.hi) << "}\n";
+  y << "start: " << region(s.start_kind, s.start) << "\n";
+  y << "goal:\n";
+  for (const auto& g : s.goal) y << "  - " << region(g.size() == 1 ? "point" : "polygon", g) << "\n";
+  y << "motions: {m: {" << (s.spring ? "spring" : "damper") << ": " << vec(s.command) << "}}\n";
+  y << "strategies: {s: [m]}\n";
+  return y.str();
+}
+
+bool loads(const std::string& yaml) {
+  try {
+    load_task_from_string(yaml, "campaign");
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The top rectangle (counter-clockwise from above) of the floor or of a box.
+std::vector<Vec3> top_rectangle(const Vec3& lo, const Vec3& hi, double z) {
+  return {Vec3(lo.x(), lo.y(), z), Vec3(hi.x(), lo.y(), z), Vec3(hi.x(), hi.y(), z), Vec3(lo.x(), hi.y(), z)};
+}
+
+Scene draw_scene(Rng& rng, std::string* description) {
+  Scene s;
+  const int unit = uniform_index(rng, 3);
+  s.units = unit == 0 ? "in" : unit == 1 ? "mm" : "m";
+  const double per_inch = unit == 0 ? 1 : unit == 1 ? 25.4 : 0.0254;
+  const double size = std::exp(uniform(rng, std::log(0.25), std::log(2.0)));  // physical scale factor
+  const double L = per_inch * size;
+  const bool far = uniform01(rng) < 0.5;
+  Vec3 offset;
+  for (int k = 0; k < 3; ++k) {
+    const double mag =
+        far ? std::exp(uniform(rng, std::log(kFarOffsetMin), std::log(kFarOffsetMax))) * per_inch
+            : uniform(rng, 0, 5) * L;
+    offset[k] = uniform01(rng) < 0.5 ? -mag : mag;
+  }
+  const Vec3 extent(uniform(rng, 4, 10) * L, uniform(rng, 4, 10) * L, uniform(rng, 3, 6) * L);
+  s.lo = offset;
+  s.hi = offset + extent;
+  s.mu = uniform(rng, kMinFriction, kMaxFriction);
+  s.u.eps_s = uniform(rng, kMinEps, kMaxEps) * L;
+  s.u.eps_p = uniform(rng, kMinEps, kMaxEps) * L;
+  s.u.theta_v = uniform(rng, kMinThetaV, kMaxThetaV);
+  s.u.theta_f = 0.05;
+  const int nboxes = uniform_index(rng, 4);
+  for (int b = 0; b < nboxes; ++b) {
+    AxisBox box;
+    for (int k = 0; k < 2; ++k) {
+      const double w = uniform(rng, 0.15, 0.6) * extent[k];
+      const double a = uniform(rng, 0, extent[k] - w);
+      // Now and then flush against a bounds wall (walls and floor meet the box: concave edges and corners).
+      const double at = uniform01(rng) < 0.25 ? (uniform01(rng) < 0.5 ? 0 : extent[k] - w) : a;
+      box.min[k] = s.lo[k] + at;
+      box.max[k] = s.lo[k] + at + w;
+    }
+    box.min.z() = s.lo.z();
+    box.max.z() = s.lo.z() + uniform(rng, 0.1, 0.5) * extent.z();
+    s.boxes.push_back(box);
+  }
+  // The start face: the floor or a box top; a point, a short segment or a small square on it.
+  const int face = uniform_index(rng, nboxes + 1);
+  const Vec3 flo = face == 0 ? s.lo : s.boxes[face - 1].min;
+  const Vec3 fhi = face == 0 ? s.hi : s.boxes[face - 1].max;
+  const double z = face == 0 ? s.lo.z() : fhi.z();
+  const double r = uniform(rng, 0.02, 0.4) * L;
+  const Vec3 c(uniform(rng, flo.x() + r, fhi.x() - r), uniform(rng, flo.y() + r, fhi.y() - r), z);
+  const int kind = uniform_index(rng, 5);
+  if (kind <= 2) {
+    s.start_kind = "point";
+    s.start = {c};
+  } else if (kind == 3) {
+    s.start_kind = "segment";
+    const double a = uniform(rng, 0, 2 * M_PI);
+    const Vec3 d(r * std::cos(a), r * std::sin(a), 0);
+    s.start = {c - d, c + d};
+  } else {
+    s.start_kind = "polygon";
+    s.start = top_rectangle(c - Vec3(r, r, 0), c + Vec3(r, r, 0), z);
+  }
+  // Goal: the start face's whole top (a box top, or the floor when nothing stands on it), else the start's
+  // first point; the verdict is what a "reliable" claim is then checked against.
+  if (face > 0 || nboxes == 0)
+    s.goal = {top_rectangle(flo, fhi, z)};
+  else
+    s.goal = {{s.start[0]}};
+  s.spring = uniform01(rng) < 0.5;
+  if (s.spring) {
+    s.command = c + Vec3(uniform(rng, -3, 3) * L, uniform(rng, -3, 3) * L, uniform(rng, -2, 0.3) * L);
+  } else {
+    const double polar = uniform(rng, 0.05, 1.5), az = uniform(rng, 0, 2 * M_PI);
+    s.command = Vec3(std::sin(polar) * std::cos(az), std::sin(polar) * std::sin(az), -std::cos(polar));
+  }
+  std::ostringstream d;
+  d << (s.spring ? "spring" : "damper") << ", " << nboxes << " boxes, " << s.units << ", "
+    << (far ? "far" : "near") << ", start " << s.start_kind << " on " << (face == 0 ? "floor" : "box top")
+    << ", mu " << num(std::round(s.mu * 100) / 100) << ", theta_v "
+    << num(std::round(s.u.theta_v * 100) / 100);
+  *description = d.str();
+  return s;
+}
+
+struct Generated {
+  Scene scene;
+  CampaignTask task;
+  bool valid = false;
+};
+
+Generated generate(std::uint64_t seed, int index) {
+  Rng rng = rollout_stream(splitmix64(seed) ^ 0x5eedca3a16e5ULL, static_cast<std::uint64_t>(index));
+  Generated g;
+  g.task.index = index;
+  for (int attempt = 0; attempt < kGenerationAttempts; ++attempt) {
+    g.scene = draw_scene(rng, &g.task.description);
+    g.task.yaml = to_yaml(g.scene, index, g.task.description);
+    if (loads(g.task.yaml)) {
+      g.valid = true;
+      return g;
+    }
+    // A goal over a top that another box covers in part: fall back to the start's first point.
+    g.scene.goal = {{g.scene.start[0]}};
+    g.task.yaml = to_yaml(g.scene, index, g.task.description);
+    if (loads(g.task.yaml)) {
+      g.valid = true;
+      return g;
+    }
+  }
+  return g;
+}
+
+// Validation of one task text in a forked child under the verifier budget; the child sends back the summary.
+CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& options, int index) {
+  CampaignRecord rec;
+  rec.index = index;
+  std::shared_ptr<const LoadedTask> task;
+  try {
+    task = load_task_from_string(yaml, "campaign-" + std::to_string(index));
+  } catch (const std::exception& e) {
+    rec.status = "invalid";
+    rec.detail = e.what();
+    return rec;
+  }
+  const ForkedRun run =
+      run_forked_with_budget(options.verifier_budget, [&](const std::function<void()>& done) {
+        ValidateOptions o;
+        o.n = options.rollouts;
+        o.seed = splitmix64(options.seed) ^ static_cast<std::uint64_t>(index);
+        o.threads = options.threads;
+        o.mode = SampleMode::kExtreme;
+        o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
+        o.after_verify = done;
+        const ValidationResult r = run_validation(task, yaml, "s", o);
+        nlohmann::json j;
+        j["reliable"] = r.prediction.reliable;
+        j["failure"] = r.prediction.failure;
+        j["rollouts"] = static_cast<int>(r.rollouts.size());
+        j["successes"] = r.successes;
+        j["unstable"] = r.unstable;
+        j["ends"] = static_cast<int>(r.ends.size());
+        j["outside"] = r.outside;
+        j["soundness"] = r.soundness;
+        j["soundness_bug"] = r.soundness_bug;
+        j["max_distance_outside"] = r.worst.empty() ? 0.0 : r.worst.front().distance;
+        j["verify_seconds"] = r.verify_seconds;
+        j["seed"] = o.seed;
+        return json_text(j);
+      });
+  if (run.timed_out) {
+    rec.status = "timed-out";
+    rec.detail = "verifier over " + num(options.verifier_budget) + " s";
+    return rec;
+  }
+  const nlohmann::json j = nlohmann::json::parse(run.payload);
+  rec.reliable = j["reliable"];
+  rec.detail = j["failure"];
+  rec.rollouts = j["rollouts"];
+  rec.successes = j["successes"];
+  rec.unstable = j["unstable"];
+  rec.ends = j["ends"];
+  rec.outside = j["outside"];
+  rec.soundness = j["soundness"];
+  rec.soundness_bug = j["soundness_bug"];
+  rec.max_distance_outside = j["max_distance_outside"];
+  rec.verify_seconds = j["verify_seconds"];
+  rec.status = rec.outside > 0 || rec.soundness_bug ? "bug" : "sound";
+  rec.replay = "cmt validate TASK --strategy s -n " + std::to_string(options.rollouts) + " --seed " +
+               std::to_string(j["seed"].get<std::uint64_t>()) + " --mode extreme";
+  return rec;
+}
+
+// Smaller variants of a scene: each box dropped, the start reduced to its first point.
+std::vector<Scene> shrink_candidates(const Scene& s) {
+  std::vector<Scene> out;
+  for (std::size_t b = 0; b < s.boxes.size(); ++b) {
+    Scene t = s;
+    t.boxes.erase(t.boxes.begin() + static_cast<long>(b));
+    out.push_back(t);
+  }
+  if (s.start_kind != "point") {
+    Scene t = s;
+    t.start_kind = "point";
+    t.start = {s.start[0]};
+    out.push_back(t);
+  }
+  return out;
+}
+
+// Greedy minimization: keep any smaller variant that still shows a bug, until none does.
+Scene minimize(Scene s, const std::string& description, const CampaignOptions& options, int index,
+               CampaignRecord* rec) {
+  for (bool shrunk = true; shrunk;) {
+    shrunk = false;
+    for (const Scene& t : shrink_candidates(s)) {
+      const std::string yaml = to_yaml(t, index, description);
+      const CampaignRecord r = validate_text(yaml, options, index);
+      if (r.status == "bug") {
+        s = t;
+        *rec = r;
+        shrunk = true;
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+std::map<int, nlohmann::json> recorded(const std::filesystem::path& file, const CampaignOptions& options) {
+  std::map<int, nlohmann::json> out;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    try {
+      const nlohmann::json j = nlohmann::json::parse(line);
+      if (j.value("seed", std::uint64_t{0}) == options.seed && j.value("n", 0) == options.rollouts)
+        out[j["index"].get<int>()] = j;
+    } catch (const std::exception&) {  // a line cut by a kill: that task runs again
+    }
+  }
+  return out;
+}
+
+CampaignRecord record_from_json(const nlohmann::json& j) {
+  CampaignRecord r;
+  r.index = j["index"];
+  r.status = j["status"];
+  r.description = j.value("description", "");
+  r.reliable = j.value("reliable", false);
+  r.saved = j.value("saved", "");
+  r.replay = j.value("replay", "");
+  r.outside = j.value("outside", 0);
+  r.max_distance_outside = j.value("max_distance_outside", 0.0);
+  return r;
+}
+
+}  // namespace
+
+CampaignTask generate_campaign_task(std::uint64_t seed, int index) { return generate(seed, index).task; }
+
+nlohmann::json campaign_record_json(const CampaignRecord& r) {
+  return {{"index", r.index},
+          {"status", r.status},
+          {"description", r.description},
+          {"detail", r.detail},
+          {"reliable", r.reliable},
+          {"rollouts", r.rollouts},
+          {"successes", r.successes},
+          {"unstable", r.unstable},
+          {"ends", r.ends},
+          {"outside", r.outside},
+          {"soundness", r.soundness},
+          {"max_distance_outside", r.max_distance_outside},
+          {"soundness_bug", r.soundness_bug},
+          {"verify_seconds", r.verify_seconds},
+          {"saved", r.saved},
+          {"replay", r.replay}};
+}
+
+CampaignSummary run_soundness_campaign(const CampaignOptions& options,
+                                       const std::function<void(const CampaignRecord&)>& progress) {
+  std::filesystem::create_directories(options.out / "bugs");
+  const std::filesystem::path results = options.out / "results.jsonl";
+  const std::map<int, nlohmann::json> done = recorded(results, options);
+  std::ofstream log(results, std::ios::app);
+  CampaignSummary sum;
+  for (int i = 0; i < options.tasks; ++i) {
+    CampaignRecord rec;
+    if (const auto it = done.find(i); it != done.end()) {
+      rec = record_from_json(it->second);
+      ++sum.resumed;
+    } else {
+      const Generated g = generate(options.seed, i);
+      if (!g.valid) {
+        rec.index = i;
+        rec.status = "invalid";
+        rec.detail = "no draw put the start and goal on the contact surface";
+      } else {
+        rec = validate_text(g.task.yaml, options, i);
+        Scene scene = g.scene;
+        if (rec.status == "bug" && options.minimize)
+          scene = minimize(scene, g.task.description, options, i, &rec);
+        if (rec.status == "bug") {
+          const std::filesystem::path file = options.out / "bugs" / ("task-" + std::to_string(i) + ".yaml");
+          std::ofstream(file) << to_yaml(scene, i, g.task.description);
+          rec.saved = file.string();
+          const std::size_t at = rec.replay.find("TASK");
+          if (at != std::string::npos) rec.replay.replace(at, 4, file.string());
+        }
+      }
+      rec.description = g.task.description;
+      nlohmann::json line = campaign_record_json(rec);
+      line["seed"] = options.seed;
+      line["n"] = options.rollouts;
+      log << json_text(line) << "\n" << std::flush;
+    }
+    ++sum.run;
+    if (rec.status == "sound") ++sum.sound;
+    if (rec.status == "invalid") ++sum.invalid;
+    if (rec.status == "timed-out") ++sum.timed_out;
+    if (rec.status == "bug") {
+      ++sum.bugs;
+      sum.bug_records.push_back(rec);
+    }
+    if (rec.reliable) ++sum.reliable;
+    if (progress) progress(rec);
+  }
+  return sum;
+}
+
+}  // namespace cmt

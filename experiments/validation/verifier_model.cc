@@ -1,0 +1,93 @@
+#include "experiments/validation/verifier_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "experiments/common/task_overrides.h"
+#include "models/task_error.h"
+#include "models/task_loader.h"
+#include "sim/rollout.h"
+
+namespace cmt {
+
+double sensed_force_extra_angle(double theta_f, double servo_ratio) {
+  return std::asin(2 * servo_ratio / (1 + servo_ratio) * std::sin(theta_f / 2));
+}
+
+double rollout_contact_lift(const LoadedTask& task) {
+  const SimOptions sim;
+  const MjcfOptions& scene = sim.scene;
+  double mu_max = 0;
+  for (const Face& f : task.cspace.faces()) mu_max = std::max(mu_max, f.friction);
+  const double speed = std::max(sim.damper_speed_per_scale, sim.max_speed_per_scale) * task.cspace.scale();
+  return scene.robot_mass / scene.damping * mu_max * speed;
+}
+
+VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
+                                  ControllerForm form) {
+  VerifierModel m;
+  m.task = task;
+  m.contact_lift = rollout_contact_lift(*task);
+  m.form = form;
+  m.task_theta_v = task->task.uncertainty.theta_v;
+  m.theta_f = task->task.uncertainty.theta_f;
+  m.theta_v = m.task_theta_v;
+  switch (form) {
+    case ControllerForm::kImpedance:
+      m.reason = "impedance form: no sensed force enters the command, so theta_v bounds the velocity error";
+      return m;
+    case ControllerForm::kPosition:
+      m.spring_model = SpringModel::kViaPoint;
+      m.reason =
+          "position form: no bound derived (its sensed-force term sits inside the turned, speed-capped "
+          "drive); the task's theta_v is used, so the prediction need not cover this form";
+      return m;
+    case ControllerForm::kAdmittance:
+      break;
+  }
+  m.extra_angle = sensed_force_extra_angle(m.theta_f);
+  if (m.extra_angle == 0) {
+    m.reason =
+        "admittance form with theta_f = 0: the sensed force is exact, theta_v bounds the velocity error";
+    return m;
+  }
+  m.theta_v = m.task_theta_v + m.extra_angle;
+  std::ostringstream why;
+  why.precision(6);
+  why << "admittance form: the sensed force (direction error <= theta_f = " << m.theta_f
+      << ") fed back through 1/b turns the velocity in contact by up to asin(2 rho/(1+rho) sin(theta_f/2)) = "
+      << m.extra_angle << " more (rho = b_s/b = " << kAdmittanceServoRatio
+      << "; experiments/validation/verifier_model.h), so the verifier uses theta_v + that = " << m.theta_v;
+  m.reason = why.str();
+
+  const Task& base = task->task;
+  const ParamSet widen = {ParamValue{
+      ParamTarget{ParamTarget::Kind::kUncertainty, "theta_v"}, {m.theta_v}, "uncertainty.theta_v"}};
+  const std::string widened = apply_overrides(task_yaml, base, widen);
+  try {
+    parse_task_string(widened, base.source_file);
+  } catch (const TaskError& e) {
+    throw TaskError(base.source_file, "uncertainty.theta_v",
+                    "the admittance form needs the verifier to use theta_v + " +
+                        std::to_string(m.extra_angle) +
+                        " (theta_f error fed back) = " + std::to_string(m.theta_v) +
+                        ", which the task format refuses: " + e.reason() + "; use --controller impedance");
+  }
+  m.task = load_task_from_string(widened, base.source_file);
+  return m;
+}
+
+nlohmann::json verifier_model_json(const VerifierModel& m) {
+  return {{"controller", controller_form_name(m.form)},
+          {"task_theta_v", m.task_theta_v},
+          {"theta_f", m.theta_f},
+          {"extra_angle", m.extra_angle},
+          {"theta_v", m.theta_v},
+          {"spring_model", spring_model_name(m.spring_model)},
+          {"stop_relative_speed", m.stop_relative_speed},
+          {"contact_lift", m.contact_lift},
+          {"reason", m.reason}};
+}
+
+}  // namespace cmt

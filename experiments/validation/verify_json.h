@@ -1,0 +1,18 @@
+// The `cmt verify --json` object (contracts.md, docs/verifier.md "Output"): reliable, steps (motion,
+// termination = [{atom, name, kind, polygon}], ...), seconds, the verifier options; when unreliable also
+// failed_step, failure and outside_goal (the offending termination pieces). `cmt validate` and the sweep's
+// results store keep it as the prediction.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "models/loaded_task.h"
+#include "verifier/verify.h"
+
+namespace cmt {
+
+// with_reached: each step also lists `reached`, every contact point the motion may pass through.
+nlohmann::json verify_json(const LoadedTask& task, const VerifyResult& result, double seconds,
+                           bool with_reached = false);
+
+}  // namespace cmt
