@@ -330,6 +330,28 @@ class CSpaceBuilder {
       }
       out_.obstacles_.push_back(std::move(c));
     }
+    drop_repeated_obstacles();
+  }
+
+  // An obstacle repeated exactly (the same friction and vertex set, as when a file lists a part twice) adds
+  // nothing to the union but its cost: every copy carries and cuts the same planes, so the face construction
+  // grew with the square of the copies (300 copies of a part took tens of seconds). The faces are built from
+  // the first of each; CSpace::obstacles() still lists every one.
+  void drop_repeated_obstacles() {
+    using Key = std::pair<double, std::vector<Point3>>;
+    const auto key_less = [](const Key& a, const Key& b) {
+      if (a.first != b.first) return a.first < b.first;
+      return std::lexicographical_compare(a.second.begin(), a.second.end(), b.second.begin(), b.second.end(),
+                                          PointLess());
+    };
+    std::set<Key, decltype(key_less)> seen(key_less);
+    std::vector<ExactObstacle> distinct;
+    for (ExactObstacle& ob : obstacles_) {
+      std::vector<Point3> corners = ob.vertices;
+      std::sort(corners.begin(), corners.end(), PointLess());
+      if (seen.emplace(ob.friction, std::move(corners)).second) distinct.push_back(std::move(ob));
+    }
+    obstacles_ = std::move(distinct);
   }
 
   // The clip box: the task bounds where given; otherwise a box strictly containing every obstacle whose walls

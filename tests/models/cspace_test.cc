@@ -108,6 +108,31 @@ TEST(CSpace, OverlappingAndTouchingBoxesMerge) {
   EXPECT_EQ(touch.edges().size(), 12u + 22u);
 }
 
+// A box listed many times is one box: the surface of one box inside the bounds box, while obstacles() still
+// lists every copy. The copies are built once (hundreds of copies once took tens of seconds: fuzz corpus
+// duplicate_parts_300); a copy with another friction is not a copy, and the larger friction wins.
+TEST(CSpace, RepeatedBoxesAreOneBox) {
+  const Vec3 lo(-1, -1, -1), hi(4, 4, 4);
+  const TestBox box{Vec3(0, 0, 0), Vec3(2, 1, 1)};
+  const CSpace c =
+      CSpace::build(parse_task_string(boxes_yaml(std::vector<TestBox>(400, box), lo, hi), "repeated.yaml"));
+  EXPECT_EQ(c.obstacles().size(), 400u);
+  EXPECT_EQ(c.faces().size(), 12u);
+  EXPECT_EQ(c.edges().size(), 24u);
+  EXPECT_EQ(c.vertices().size(), 16u);
+  std::string yaml = boxes_yaml({box, box}, lo, hi);
+  const std::string copy = "max: [2, 1, 1]}\n";
+  const auto at = yaml.rfind(copy);
+  ASSERT_NE(at, std::string::npos) << yaml;
+  yaml.replace(at, copy.size(), "max: [2, 1, 1], friction: 0.5}\n");
+  const CSpace mixed = CSpace::build(parse_task_string(yaml, "mixed.yaml"));
+  EXPECT_EQ(mixed.obstacles().size(), 2u);
+  ASSERT_EQ(mixed.faces().size(), 12u);
+  int box_faces = 0;
+  for (const Face& f : mixed.faces()) box_faces += f.friction == 0.5;
+  EXPECT_EQ(box_faces, 6);  // the bounds box keeps the task's 0.25
+}
+
 TEST(CSpace, CubeInteriorHasBuckleyCounts) {
   auto lt = load_task_from_string(test::kCubeYaml, "cube.yaml");
   const CSpace& c = lt->cspace;
