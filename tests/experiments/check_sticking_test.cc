@@ -76,21 +76,6 @@ TEST(CheckSticking, FacesAndVerticesAgreeWithPhysicsInTheStiffScene) {
   }
 }
 
-// --scene rollout (the rollouts' scene) and the default --scene soft-layer are one scene.
-TEST(CheckSticking, RolloutSceneIsTheDefault) {
-  int s1 = -1, s2 = -1;
-  auto a = run_json("check-sticking " + task("hole") + " -n 120 --seed 3", &s1);
-  auto b = run_json("check-sticking " + task("hole") + " -n 120 --seed 3 --scene rollout", &s2);
-  EXPECT_EQ(a["scene"], "soft-layer");
-  EXPECT_EQ(b["scene"], "rollout");
-  for (auto* j : {&a, &b}) {
-    j->erase("seconds");
-    j->erase("scene");
-  }
-  EXPECT_EQ(s1, s2);
-  EXPECT_EQ(a, b);
-}
-
 TEST(CheckSticking, SameResultForAnyThreadCount) {
   int s1 = -1, s2 = -1;
   auto a = run_json("check-sticking " + task("hole") + " -n 120 --seed 3 --threads 1", &s1);

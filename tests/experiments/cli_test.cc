@@ -307,36 +307,28 @@ TEST(CmtVerify, PerfectSensingAnswersWithinTheTimeLimit) {
   EXPECT_EQ(j["reliable"], true);
 }
 
-TEST(CmtVerify, SpringModelOption) {
-  // The cube's sticking motion is reliable under both spring models (docs/verifier.md); the JSON names the
-  // model; the default is the velocity model; an unknown model is a usage error (exit 2).
-  for (const std::string model : {"velocity", "via-point"}) {
-    const Result r = run("verify " + task("cube") + " --strategy stick --spring-model " + model + " --json");
-    ASSERT_EQ(r.status, 0) << model;
-    EXPECT_EQ(nlohmann::json::parse(r.out)["spring_model"], model);
-  }
+// The verifier's model options on the cube's sticking motion (docs/verifier.md), each echoed in the JSON. By
+// default: the velocity spring model and the stop rule's kappa at the rollouts' 1 %
+// (controllers/termination.h). Under the via-point model `stick` is reliable too. With Coulomb sticking only
+// (kappa 0), theta_v .25 > phi .245 lets the spring circle the foot of its target on the floor forever
+// ("Termination: sliding forever"): unreliable, exit 1. An unknown model and kappa outside [0, 1] are usage
+// errors (exit 2).
+TEST(CmtVerify, SpringModelAndStopRuleOptions) {
   const Result d = run("verify " + task("cube") + " --strategy stick --json");
   ASSERT_EQ(d.status, 0);
-  EXPECT_EQ(nlohmann::json::parse(d.out)["spring_model"], "velocity");
-  EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --spring-model tube --json").status, 2);
-}
-
-// The stop rule's kappa (docs/verifier.md "Slow slides count as stops"): by default the rollouts' 1 %
-// (controllers/termination.h), echoed in the JSON; 0 is Coulomb sticking only, under which the cube's
-// spring may slide forever; outside [0, 1] a usage error (exit 2).
-TEST(CmtVerify, StopRelativeSpeedOption) {
-  const Result d = run("verify " + task("cube") + " --strategy stick --json");
-  ASSERT_EQ(d.status, 0);
-  EXPECT_DOUBLE_EQ(nlohmann::json::parse(d.out)["stop_relative_speed"].get<double>(), 0.01);
-  // With Coulomb sticking only, theta_v .25 > phi .245 lets the spring circle the foot of its target on the
-  // floor forever (docs/verifier.md "Termination: sliding forever"): unreliable, exit 1.
+  const nlohmann::json dj = nlohmann::json::parse(d.out);
+  EXPECT_EQ(dj["spring_model"], "velocity");
+  EXPECT_DOUBLE_EQ(dj["stop_relative_speed"].get<double>(), 0.01);
+  const Result v = run("verify " + task("cube") + " --strategy stick --spring-model via-point --json");
+  ASSERT_EQ(v.status, 0);
+  EXPECT_EQ(nlohmann::json::parse(v.out)["spring_model"], "via-point");
   const Result z = run("verify " + task("cube") + " --strategy stick --stop-relative-speed 0 --json");
   ASSERT_EQ(z.status, 1);
   const nlohmann::json zj = nlohmann::json::parse(z.out);
   EXPECT_DOUBLE_EQ(zj["stop_relative_speed"].get<double>(), 0);
   EXPECT_NE(zj["failure"].get<std::string>().find("may slide forever"), std::string::npos) << z.out;
-  EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --stop-relative-speed 2 --json").status, 2);
-  EXPECT_EQ(run("verify " + task("cube") + " --strategy stick --stop-relative-speed -1 --json").status, 2);
+  for (const char* bad : {"--spring-model tube", "--stop-relative-speed 2", "--stop-relative-speed -1"})
+    EXPECT_EQ(run("verify " + task("cube") + " --strategy stick " + bad + " --json").status, 2) << bad;
 }
 
 // Sensing termination (docs/task-format.md "terminate", docs/verifier.md §4.5): the room of

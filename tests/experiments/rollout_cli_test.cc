@@ -101,7 +101,8 @@ TEST(CmtRollout, BadInputExitsWithTwoAndNamesTheKey) {
   EXPECT_NE(d.out.find("motions.v2"), std::string::npos) << d.out;
 }
 
-// The calibration passes in the rollouts' scene, and fails in the stiff one (its concave edge).
+// The calibration passes in the rollouts' scene (exit 0) and reports every criterion; that the stiff scene
+// fails it at the concave edge is Calibration.StiffSceneFailsOnlyAtTheConcaveEdge (tests/sim).
 TEST(CmtCalibrateFriction, ReportsTheCriteria) {
   const Result r = run("calibrate-friction --json");
   EXPECT_EQ(r.status, 0);
@@ -115,13 +116,6 @@ TEST(CmtCalibrateFriction, ReportsTheCriteria) {
   EXPECT_TRUE(j["passed"].get<bool>());
   EXPECT_EQ(j["scene"], "rollout");
   EXPECT_EQ(j["timestep"], cmt::kSoftLayerTimestep);
-
-  const Result stiff = run("calibrate-friction --scene stiff --json");
-  EXPECT_EQ(stiff.status, 1);
-  const auto k = nlohmann::json::parse(stiff.out);
-  EXPECT_EQ(k["scene"], "stiff");
-  EXPECT_TRUE(k["agree"].get<bool>());
-  EXPECT_FALSE(k["passed"].get<bool>());
 
   EXPECT_EQ(run("calibrate-friction --scene bogus --json").status, 2);
   EXPECT_EQ(run("calibrate-friction --soft-layer --scene stiff --json").status, 2);

@@ -62,11 +62,6 @@ RolloutOutcome rollout(int index, std::vector<std::pair<Vec3, Termination>> ends
 
 constexpr Termination kStick = Termination::kSticking;
 
-TEST(ValidateScoring, ContactToleranceIsTheRolloutAtomTolerance) {
-  EXPECT_EQ(kContactRelativeTolerance, kAtomRelativeTolerance);
-  EXPECT_NEAR(room()->cspace.scale(), 12, 1e-12);
-}
-
 TEST(ValidateScoring, CountsEndsOutsideThePredictionFarthestFirst) {
   const auto t = room();
   const CSpace& c = t->cspace;
