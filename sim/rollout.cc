@@ -16,12 +16,12 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 
 #include "models/polygon_distance.h"
 #include "sim/mujoco_guard.h"
+#include "sim/parallel_runs.h"
 #include "sim/seam_filter.h"
 
 namespace cmt {
@@ -433,44 +433,38 @@ std::vector<RolloutOutcome> run_rollouts(std::shared_ptr<const RolloutScene> sce
                                          int n, std::uint64_t seed, int threads,
                                          const std::function<void(int)>& progress) {
   if (n < 0) throw std::invalid_argument("run_rollouts: n must be >= 0");
-  threads = std::max(1, std::min(threads, std::max(1, n)));
   std::vector<RolloutOutcome> results(static_cast<std::size_t>(n));
-  std::atomic<int> next{0}, done{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    try {
-      RolloutRunner runner(scene);
-      for (int i; (i = next.fetch_add(1)) < n;) {
-        results[static_cast<std::size_t>(i)] = runner.run(strategy, seed, i);
-        done.fetch_add(1);
-      }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next.store(n);  // stop the others
-    }
+  std::atomic<int> done{0};
+  const auto run_all = [&] {
+    parallel_runs(
+        n, threads, [&] { return std::make_unique<RolloutRunner>(scene); },
+        [&](RolloutRunner& runner, int i) {
+          results[static_cast<std::size_t>(i)] = runner.run(strategy, seed, i);
+          done.fetch_add(1);
+        });
   };
-  std::vector<std::thread> pool;
-  if (progress) {
-    // All rollouts on worker threads; the calling thread only reports progress.
-    std::atomic<int> running{threads};
-    for (int t = 0; t < threads; ++t)
-      pool.emplace_back([&] {
-        worker();
-        running.fetch_sub(1);
-      });
-    while (running.load() > 0) {
-      progress(done.load());
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-  } else {
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
+  if (!progress) {
+    run_all();
+    return results;
   }
-  for (std::thread& t : pool) t.join();
+  // The rollouts on a thread of their own; the calling thread only reports progress.
+  std::exception_ptr error;
+  std::atomic<bool> finished{false};
+  std::thread worker([&] {
+    try {
+      run_all();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    finished.store(true);
+  });
+  while (!finished.load()) {
+    progress(done.load());
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  worker.join();
   if (error) std::rethrow_exception(error);
-  if (progress) progress(done.load());
+  progress(done.load());
   return results;
 }
 

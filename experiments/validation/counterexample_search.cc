@@ -16,17 +16,14 @@
 #include "experiments/validation/counterexample_search.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "controllers/random.h"
 #include "experiments/validation/piece_geometry.h"
+#include "sim/parallel_runs.h"
 
 namespace cmt {
 
@@ -82,28 +79,14 @@ class Search {
   bool run_batch(const std::vector<Candidate>& batch, const char* how) {
     for (const Candidate& c : batch) scene(c.mode);  // built here, not in the workers
     std::vector<RolloutOutcome> out(batch.size());
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    auto worker = [&] {
-      try {
-        std::map<SampleMode, std::unique_ptr<RolloutRunner>> runners;
-        for (std::size_t i; (i = next.fetch_add(1)) < batch.size();) {
+    using Runners = std::map<SampleMode, std::unique_ptr<RolloutRunner>>;  // one per scene, per thread
+    parallel_runs(
+        static_cast<int>(batch.size()), options_.threads, [] { return std::make_unique<Runners>(); },
+        [&](Runners& runners, int i) {
           auto& runner = runners[batch[i].mode];
           if (!runner) runner = std::make_unique<RolloutRunner>(scenes_.at(batch[i].mode));
           out[i] = runner->run(strategy_, batch[i].seed, 0);
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next.store(batch.size());
-      }
-    };
-    const int threads = std::max(1, std::min<int>(options_.threads, static_cast<int>(batch.size())));
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
+        });
 
     bool found = false;
     for (std::size_t i = 0; i < batch.size(); ++i) {

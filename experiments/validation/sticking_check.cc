@@ -6,9 +6,9 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "controllers/random.h"
+#include "sim/parallel_runs.h"
 #include "sim/rollout.h"
 #include "verifier/atom_cone.h"
 #include "verifier/damper.h"
@@ -121,22 +121,17 @@ StickingCheckResult check_sticking(std::shared_ptr<const LoadedTask> task, int n
   if (atoms.empty()) throw std::invalid_argument("no atoms of the requested kinds");
   std::vector<Trial> trials(n);
   for (int i = 0; i < n; ++i) trials[i] = make_trial(*task, cones, atoms, seed, i);
-  threads = std::max(1, std::min(threads, n));
-  std::vector<std::thread> pool;
-  for (int k = 0; k < threads; ++k)
-    pool.emplace_back([&, k] {
-      RolloutRunner runner(scene);
-      for (int i = k; i < n; i += threads) {
+  parallel_runs(
+      n, threads, [&] { return std::make_unique<RolloutRunner>(scene); },
+      [&](RolloutRunner& runner, int i) {
         drive_trial(runner, trials[i]);
-        if (trials[i].unstable) continue;
+        if (trials[i].unstable) return;
         trials[i].speed /= command_speed;
         trials[i].travel /= command_speed;
         // Stuck: still in the window, and it never went anywhere (a robot that slid to the end of its atom
         // and stopped at a corner has travelled).
         trials[i].stuck = trials[i].speed < kCheckStuckSpeed && trials[i].travel < kCheckStuckTravel;
-      }
-    });
-  for (auto& th : pool) th.join();
+      });
 
   StickingCheckResult r;
   r.trials = n;
