@@ -1,5 +1,7 @@
 #include "models/task.h"
 
+#include "models/task_error.h"
+
 namespace cmt {
 
 double meters_per_unit(LengthUnit unit) {
@@ -56,6 +58,18 @@ const Strategy* Task::find_strategy(const std::string& strategy_name) const {
   for (const Strategy& s : strategies)
     if (s.name == strategy_name) return &s;
   return nullptr;
+}
+
+const Strategy& Task::strategy_named(const std::string& strategy_name) const {
+  if (const Strategy* s = find_strategy(strategy_name)) return *s;
+  throw TaskError(source_file, "strategies",
+                  "unknown strategy '" + strategy_name + "' (the task has: " + strategy_names() + ")");
+}
+
+std::string Task::strategy_names() const {
+  std::string names;
+  for (const Strategy& s : strategies) names += (names.empty() ? "" : ", ") + s.name;
+  return names;
 }
 
 }  // namespace cmt

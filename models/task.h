@@ -139,6 +139,10 @@ struct Task {
 
   const Motion* find_motion(const std::string& name) const;
   const Strategy* find_strategy(const std::string& name) const;
+  // The strategy called `name`; throws TaskError(source_file, "strategies", ...) naming the known ones.
+  const Strategy& strategy_named(const std::string& name) const;
+  // The strategies' names, comma-separated, for messages.
+  std::string strategy_names() const;
 };
 
 }  // namespace cmt

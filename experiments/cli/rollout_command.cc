@@ -94,6 +94,62 @@ void write_trajectories(const std::filesystem::path& file, const std::vector<Rol
   if (!out) throw std::runtime_error("cannot write trajectory file '" + file.string() + "': write failed");
 }
 
+// The `cmt rollout --json` object (contracts.md): the run's settings, counts and totals, every outcome.
+struct RolloutRun {
+  const LoadedTask& task;
+  const RolloutScene& scene;
+  const Strategy& strategy;
+  SimOptions options;
+  std::uint64_t seed = 0;
+  int threads = 1;
+  double seconds = 0;
+};
+
+nlohmann::json rollouts_json(const RolloutRun& run, const std::vector<RolloutOutcome>& results) {
+  int successes = 0, unstable = 0;
+  long steps = 0;
+  double max_penetration = 0, sim_time = 0;
+  std::map<std::string, int> terminations, end_atoms;
+  nlohmann::json outcomes = nlohmann::json::array();
+  for (const RolloutOutcome& r : results) {
+    successes += r.success;
+    unstable += r.unstable;
+    ++terminations[termination_name(r.termination)];
+    ++end_atoms[r.atom < 0 ? "free" : run.task.cspace.atom_name(r.atom)];
+    for (const MotionOutcome& m : r.motions) {
+      steps += m.steps;
+      sim_time += m.sim_time;
+      max_penetration = std::max(max_penetration, m.max_penetration);
+    }
+    outcomes.push_back(outcome_json(run.task, r));
+  }
+  const int n = static_cast<int>(results.size());
+  return {
+      {"task", run.task.task.name},
+      {"strategy", run.strategy.name},
+      {"controller", controller_form_name(run.options.form)},
+      {"mode", sample_mode_name(run.options.mode)},
+      {"seed", run.seed},
+      {"threads", run.threads},
+      {"rollouts", n},
+      {"successes", successes},
+      {"failures", n - successes - unstable},
+      {"unstable", unstable},
+      {"success_rate", static_cast<double>(successes) / n},
+      {"terminations", terminations},
+      {"end_atoms", end_atoms},
+      {"max_penetration", max_penetration},
+      {"max_penetration_m", max_penetration * run.scene.meters_per_unit()},
+      {"atom_tolerance", run.scene.atom_tolerance()},
+      {"timestep", run.scene.timestep()},
+      {"sim_time", sim_time},
+      {"steps", steps},
+      {"seconds", run.seconds},
+      {"steps_per_second", run.seconds > 0 ? steps / run.seconds : 0.0},
+      {"outcomes", outcomes},
+  };
+}
+
 // A one-line progress bar, redrawn in place (only when stderr is a terminal).
 void draw_progress(int done, int total, std::chrono::steady_clock::time_point start) {
   const int width = 40;
@@ -130,13 +186,7 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
   cmd->callback([o, &state] {
     check_rollout_sampling_options(o->n, o->threads);
     const auto task = load_task(o->task);
-    const Strategy* strategy = task->task.find_strategy(o->strategy);
-    if (strategy == nullptr) {
-      std::string known;
-      for (const Strategy& s : task->task.strategies) known += (known.empty() ? "" : ", ") + s.name;
-      throw TaskError(task->task.source_file, "strategies",
-                      "unknown strategy '" + o->strategy + "' (the task has: " + known + ")");
-    }
+    const Strategy* strategy = &task->task.strategy_named(o->strategy);
     SimOptions options;
     options.form = *parse_controller_form(o->controller);
     options.mode = *parse_sample_mode(o->mode);
@@ -161,50 +211,11 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
     if (bar) std::fprintf(stderr, "\n");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    int successes = 0, unstable = 0;
-    long steps = 0;
-    double max_penetration = 0, sim_time = 0;
-    std::map<std::string, int> terminations, end_atoms;
-    nlohmann::json outcomes = nlohmann::json::array();
-    for (const RolloutOutcome& r : results) {
-      successes += r.success;
-      unstable += r.unstable;
-      ++terminations[termination_name(r.termination)];
-      ++end_atoms[r.atom < 0 ? "free" : task->cspace.atom_name(r.atom)];
-      for (const MotionOutcome& m : r.motions) {
-        steps += m.steps;
-        sim_time += m.sim_time;
-        max_penetration = std::max(max_penetration, m.max_penetration);
-      }
-      outcomes.push_back(outcome_json(*task, r));
-    }
     if (!o->csv.empty()) write_csv(o->csv, *task, results);
     if (!o->trajectories.empty()) write_trajectories(o->trajectories, results);
-    const int n = o->n;
-    nlohmann::json j = {
-        {"task", task->task.name},
-        {"strategy", strategy->name},
-        {"controller", controller_form_name(options.form)},
-        {"mode", sample_mode_name(options.mode)},
-        {"seed", o->seed},
-        {"threads", threads},
-        {"rollouts", n},
-        {"successes", successes},
-        {"failures", n - successes - unstable},
-        {"unstable", unstable},
-        {"success_rate", static_cast<double>(successes) / n},
-        {"terminations", terminations},
-        {"end_atoms", end_atoms},
-        {"max_penetration", max_penetration},
-        {"max_penetration_m", max_penetration * scene->meters_per_unit()},
-        {"atom_tolerance", scene->atom_tolerance()},
-        {"timestep", scene->timestep()},
-        {"sim_time", sim_time},
-        {"steps", steps},
-        {"seconds", seconds},
-        {"steps_per_second", seconds > 0 ? steps / seconds : 0.0},
-        {"outcomes", outcomes},
-    };
+    const nlohmann::json j =
+        rollouts_json({*task, *scene, *strategy, options, o->seed, threads, seconds}, results);
+    const int n = o->n, successes = j["successes"], unstable = j["unstable"];
     if (state.json) {
       print_json(j);
     } else {

@@ -101,11 +101,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     const auto task = load_task(options->task);
     Strategy strategy;
     if (!options->strategy.empty()) {
-      const Strategy* s = task->task.find_strategy(options->strategy);
-      if (!s)
-        throw TaskError(task->task.source_file, "strategies",
-                        "no strategy named '" + options->strategy + "'");
-      strategy = *s;
+      strategy = task->task.strategy_named(options->strategy);
     } else if (!options->motion.empty()) {
       strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: TaskError (verify.h)
     } else {

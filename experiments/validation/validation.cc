@@ -44,13 +44,7 @@ std::string replay_command(const LoadedTask& task, const std::string& strategy, 
 
 ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
                                 const std::string& strategy_name, const ValidateOptions& options) {
-  const Strategy* strategy = task->task.find_strategy(strategy_name);
-  if (strategy == nullptr) {
-    std::string known;
-    for (const Strategy& s : task->task.strategies) known += (known.empty() ? "" : ", ") + s.name;
-    throw TaskError(task->task.source_file, "strategies",
-                    "unknown strategy '" + strategy_name + "' (the task has: " + known + ")");
-  }
+  const Strategy* strategy = &task->task.strategy_named(strategy_name);
   if (options.n <= 0) throw std::invalid_argument("run_validation: n must be > 0");
   if (options.form == ControllerForm::kPosition)
     for (const std::string& name : strategy->motions) {

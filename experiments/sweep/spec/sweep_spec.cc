@@ -99,11 +99,9 @@ class SpecParser {
     const SpecNode strategies = n.at("strategies").list();
     for (std::size_t i = 0; i < strategies.size(); ++i) {
       const std::string name = strategies.item(i).string();
-      if (entry.base.find_strategy(name) == nullptr) {
-        std::string known;
-        for (const Strategy& s : entry.base.strategies) known += (known.empty() ? "" : ", ") + s.name;
-        strategies.item(i).fail("unknown strategy '" + name + "' (the task has: " + known + ")");
-      }
+      if (entry.base.find_strategy(name) == nullptr)
+        strategies.item(i).fail("unknown strategy '" + name +
+                                "' (the task has: " + entry.base.strategy_names() + ")");
       if (std::find(entry.strategies.begin(), entry.strategies.end(), name) != entry.strategies.end())
         strategies.item(i).fail("duplicated strategy '" + name + "'");
       // Caught here rather than by the unit that would run it, hours into the sweep.
