@@ -17,6 +17,43 @@ using fp::Points2;
 using fp::PolygonSet2;
 using fp::PolygonWithHoles2;
 
+namespace {
+
+// Is the segment inside the closed region? Exactly when both ends are and so is the midpoint of every piece
+// between its crossings with the region's boundary (each piece is then inside or outside as a whole).
+bool region_contains_segment(const PolygonSet2& region, const fp::Segment2& seg) {
+  const Point2 &a = seg.source(), &b = seg.target();
+  if (region.oriented_side(a) == CGAL::ON_NEGATIVE_SIDE || region.oriented_side(b) == CGAL::ON_NEGATIVE_SIDE)
+    return false;
+  std::vector<FT> ts{0, 1};
+  const FT len2 = seg.squared_length();
+  std::vector<PolygonWithHoles2> pwhs;
+  region.polygons_with_holes(std::back_inserter(pwhs));
+  auto scan = [&](const fp::Polygon2& poly) {
+    for (auto e = poly.edges_begin(); e != poly.edges_end(); ++e) {
+      const auto x = CGAL::intersection(seg, *e);
+      if (!x) continue;
+      if (const Point2* p = boost::get<Point2>(&*x)) ts.push_back(((*p - a) * (b - a)) / len2);
+      if (const fp::Segment2* s = boost::get<fp::Segment2>(&*x)) {
+        ts.push_back(((s->source() - a) * (b - a)) / len2);
+        ts.push_back(((s->target() - a) * (b - a)) / len2);
+      }
+    }
+  };
+  for (const PolygonWithHoles2& pwh : pwhs) {
+    scan(pwh.outer_boundary());
+    for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) scan(*h);
+  }
+  std::sort(ts.begin(), ts.end());
+  for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+    if (ts[i] == ts[i + 1]) continue;
+    if (region.oriented_side(a + (b - a) * ((ts[i] + ts[i + 1]) / 2)) == CGAL::ON_NEGATIVE_SIDE) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 // ---- Impl ----
 
 ReachedSet::Impl::Impl(const CSpace& c) : cspace(&c) {
@@ -54,37 +91,7 @@ bool ReachedSet::Impl::add_segment(int fi, const Point2& a, const Point2& b) {
   const fp::Segment2 seg(a, b);
   for (const fp::Segment2& s : fs.segments)
     if (s.has_on(a) && s.has_on(b)) return false;
-  if (!fs.region.is_empty()) {
-    // Covered by the closed region iff every piece between the crossings with the region's boundary is.
-    std::vector<FT> ts{0, 1};
-    const FT len2 = seg.squared_length();
-    std::vector<PolygonWithHoles2> pwhs;
-    fs.region.polygons_with_holes(std::back_inserter(pwhs));
-    auto scan = [&](const fp::Polygon2& poly) {
-      for (auto e = poly.edges_begin(); e != poly.edges_end(); ++e) {
-        const auto x = CGAL::intersection(seg, *e);
-        if (!x) continue;
-        if (const Point2* p = boost::get<Point2>(&*x)) ts.push_back(((*p - a) * (b - a)) / len2);
-        if (const fp::Segment2* s = boost::get<fp::Segment2>(&*x)) {
-          ts.push_back(((s->source() - a) * (b - a)) / len2);
-          ts.push_back(((s->target() - a) * (b - a)) / len2);
-        }
-      }
-    };
-    for (const PolygonWithHoles2& pwh : pwhs) {
-      scan(pwh.outer_boundary());
-      for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) scan(*h);
-    }
-    std::sort(ts.begin(), ts.end());
-    bool all = fs.region.oriented_side(a) != CGAL::ON_NEGATIVE_SIDE &&
-               fs.region.oriented_side(b) != CGAL::ON_NEGATIVE_SIDE;
-    for (std::size_t i = 0; all && i + 1 < ts.size(); ++i) {
-      if (ts[i] == ts[i + 1]) continue;
-      const Point2 mid = a + (b - a) * ((ts[i] + ts[i + 1]) / 2);
-      all = fs.region.oriented_side(mid) != CGAL::ON_NEGATIVE_SIDE;
-    }
-    if (all) return false;
-  }
+  if (!fs.region.is_empty() && region_contains_segment(fs.region, seg)) return false;
   fs.segments.push_back(seg);
   return true;
 }
@@ -367,9 +374,9 @@ std::vector<ReachedPiece> ReachedSet::pieces() const {
     const fp::FaceChart& chart = impl_->charts[fi];
     region_pieces(fs.region, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
     for (const fp::Segment2& s : fs.segments) {
-      if (impl_->covered(fi, s.source()) && impl_->covered(fi, s.target()) && !fs.region.is_empty() &&
-          fs.region.oriented_side(CGAL::midpoint(s.source(), s.target())) != CGAL::ON_NEGATIVE_SIDE)
-        continue;  // swallowed by a region grown later (approximate check: output only)
+      // Swallowed by a region grown later: only when the whole segment lies in it (a segment that leaves the
+      // region must be reported, e.g. to the goal check, pieces_outside).
+      if (!fs.region.is_empty() && region_contains_segment(fs.region, s)) continue;
       out.push_back(
           {fi, AtomKind::kFace, {chart.lift_double(s.source()), chart.lift_double(s.target())}, {}, 0});
     }

@@ -1,6 +1,6 @@
 // Atom friction cones (verifier/atom_cone.h) on a block in a room: atom_faces and atom_points of faces, edges
-// and vertices; the face cone, the Minkowski sum at concave edges and corners (wedging limit derived by hand),
-// coplanar faces counted once only when their cones agree; AtomCones against the per-atom builders.
+// and vertices; the face cone, the Minkowski sum at concave edges and corners (wedging limit derived by
+// hand), coplanar faces counted once only when their cones agree; AtomCones against the per-atom builders.
 #include "verifier/atom_cone.h"
 
 #include <gtest/gtest.h>
@@ -21,7 +21,8 @@ const Vec3 kX = Vec3::UnitX(), kY = Vec3::UnitY(), kZ = Vec3::UnitZ();
 
 std::shared_ptr<const LoadedTask> room(const std::string& obstacles) {
   return load_task_from_string(
-      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.1}\n"
+      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
+      "0.1}\n"
       "cspace: " +
           obstacles +
           "\nbounds: {min: [-4, -4, 0], max: [4, 4, 4]}\n"

@@ -32,14 +32,15 @@ TEST(ConvexPolygon, AreaOfACounterClockwiseSquareIsPositive) {
 TEST(ConvexPolygon, AreaIsSignedByTheOrientationAboutTheNormal) {
   std::vector<Vec3> cw = rect(0, 0, 2, 1);
   std::reverse(cw.begin(), cw.end());
-  EXPECT_DOUBLE_EQ(polygon_area(cw, kZ), -2);           // clockwise about +z
-  EXPECT_DOUBLE_EQ(polygon_area(rect(0, 0, 2, 1), -kZ), -2);  // counter-clockwise about +z is clockwise about -z
+  EXPECT_DOUBLE_EQ(polygon_area(cw, kZ), -2);  // clockwise about +z
+  EXPECT_DOUBLE_EQ(polygon_area(rect(0, 0, 2, 1), -kZ),
+                   -2);  // counter-clockwise about +z is clockwise about -z
   EXPECT_DOUBLE_EQ(polygon_area(cw, -kZ), 2);
 }
 
 TEST(ConvexPolygon, AreaOfATiltedTriangle) {
-  // (1,0,0), (0,1,0), (0,0,1): equilateral with side sqrt 2, area (sqrt 3 / 4) 2 = sqrt 3 / 2, counter-clockwise
-  // about (1,1,1)/sqrt 3.
+  // (1,0,0), (0,1,0), (0,0,1): equilateral with side sqrt 2, area (sqrt 3 / 4) 2 = sqrt 3 / 2,
+  // counter-clockwise about (1,1,1)/sqrt 3.
   const std::vector<Vec3> tri = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   EXPECT_NEAR(polygon_area(tri, Vec3(1, 1, 1).normalized()), std::sqrt(3.0) / 2, 1e-15);
 }
@@ -62,13 +63,14 @@ TEST(ConvexPolygon, ClipOfOverlappingSquaresIsTheirIntersection) {
 }
 
 TEST(ConvexPolygon, ClipOfATriangleByASquareCutsBothCorners) {
-  // The triangle x, y >= 0, x + y <= 2 (area 2) inside [0,1.5]^2 loses the corners x > 1.5 and y > 1.5, each a
-  // right triangle with legs .5 (area .125): a pentagon of area 1.75.
+  // The triangle x, y >= 0, x + y <= 2 (area 2) inside [0,1.5]^2 loses the corners x > 1.5 and y > 1.5, each
+  // a right triangle with legs .5 (area .125): a pentagon of area 1.75.
   const std::vector<Vec3> tri = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
   const auto out = clip_convex_polygon(tri, rect(0, 0, 1.5, 1.5), kZ);
   EXPECT_EQ(out.size(), 5u);
   EXPECT_NEAR(polygon_area(out, kZ), 1.75, 1e-15);
-  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1.5, 0, 0), Vec3(1.5, 0.5, 0), Vec3(0.5, 1.5, 0), Vec3(0, 1.5, 0)})
+  for (const Vec3& p :
+       {Vec3(0, 0, 0), Vec3(1.5, 0, 0), Vec3(1.5, 0.5, 0), Vec3(0.5, 1.5, 0), Vec3(0, 1.5, 0)})
     EXPECT_TRUE(has_point(out, p)) << p.transpose();
 }
 
@@ -106,12 +108,13 @@ TEST(ConvexPolygon, ClipInAVerticalPlane) {
 }
 
 TEST(ConvexPolygon, ClipInATiltedPlane) {
-  // The plane z = x (normal (−1,0,1)/sqrt 2). A rectangle over x in [0,2], y in [0,1] (length 2 sqrt 2 along the
-  // slope, area 2 sqrt 2) clipped by the one over x in [1,3], y in [-1, 0.5]: x in [1,2], y in [0,.5], area
-  // sqrt 2 * .5.
+  // The plane z = x (normal (−1,0,1)/sqrt 2). A rectangle over x in [0,2], y in [0,1] (length 2 sqrt 2 along
+  // the slope, area 2 sqrt 2) clipped by the one over x in [1,3], y in [-1, 0.5]: x in [1,2], y in [0,.5],
+  // area sqrt 2 * .5.
   const Vec3 n = Vec3(-1, 0, 1).normalized();
   auto on_slope = [](double x0, double y0, double x1, double y1) {
-    // Counter-clockwise about n: (x0,y0) -> (x1,y0) -> (x1,y1) -> (x0,y1), since (1,0,1) x (0,1,0) = (−1,0,1).
+    // Counter-clockwise about n: (x0,y0) -> (x1,y0) -> (x1,y1) -> (x0,y1), since (1,0,1) x (0,1,0) =
+    // (−1,0,1).
     return std::vector<Vec3>{{x0, y0, x0}, {x1, y0, x1}, {x1, y1, x1}, {x0, y1, x0}};
   };
   const auto subject = on_slope(0, 0, 2, 1);

@@ -1,6 +1,6 @@
-// Polyhedra in half-space form (verifier/polyhedron.h): membership of the four kinds (closed convex sets, open
-// complements), offsets that grow or shrink (flipped for complements), and hull_plus_cone on a cube, a point
-// plus a cone of rays, and a lower-dimensional half-strip, checked against sets described by hand.
+// Polyhedra in half-space form (verifier/polyhedron.h): membership of the four kinds (closed convex sets,
+// open complements), offsets that grow or shrink (flipped for complements), and hull_plus_cone on a cube, a
+// point plus a cone of rays, and a lower-dimensional half-strip, checked against sets described by hand.
 #include "verifier/polyhedron.h"
 
 #include <gtest/gtest.h>
@@ -123,8 +123,7 @@ TEST(Polyhedron, SegmentPlusOneRayIsAHalfStrip) {
 
 TEST(Polyhedron, RaysSpanningAllDirectionsGiveEverything) {
   // cone(±x, ±y, ±z) is all of R^3: every point is in the hull plus the cone.
-  const Polyhedron p =
-      hull_plus_cone({Vec3::Zero()}, {kX, Vec3(-kX), kY, Vec3(-kY), kZ, Vec3(-kZ)});
+  const Polyhedron p = hull_plus_cone({Vec3::Zero()}, {kX, Vec3(-kX), kY, Vec3(-kY), kZ, Vec3(-kZ)});
   for (const Vec3& q : {Vec3(100, -3, 7), Vec3(-1e6, 0, 0), Vec3(0, 0, -42)}) EXPECT_TRUE(p.contains(q));
 }
 
@@ -146,7 +145,8 @@ TEST(Polyhedron, GrownHullContainsEveryPointWithinTheOffset) {
         for (int k = -3; k <= 3; ++k) {
           const Vec3 d(i, j, k);
           if (d.norm() == 0) continue;
-          EXPECT_TRUE(grown.contains(a + 0.99 * delta * d.normalized())) << a.transpose() << " " << d.transpose();
+          EXPECT_TRUE(grown.contains(a + 0.99 * delta * d.normalized()))
+              << a.transpose() << " " << d.transpose();
         }
   EXPECT_FALSE(grown.contains(Vec3(1.11, 0.5, 0.5)));  // beyond a facet by more than delta
 }

@@ -1,7 +1,7 @@
-// UniqueStick (verifier/unique_stick.h): the force directions for which sticking is the only Coulomb solution.
-// Margins and must-cones of faces, perpendicular concave edges (kinetic cone |t| <= mu1 N1 + mu2 N2 or a face
-// cone where the other wall separates), concave box corners and the intersection kind, derived by hand; the
-// soundness side checked against a Coulomb predicate; for_atom's choice of kind on loaded scenes.
+// UniqueStick (verifier/unique_stick.h): the force directions for which sticking is the only Coulomb
+// solution. Margins and must-cones of faces, perpendicular concave edges (kinetic cone |t| <= mu1 N1 + mu2 N2
+// or a face cone where the other wall separates), concave box corners and the intersection kind, derived by
+// hand; the soundness side checked against a Coulomb predicate; for_atom's choice of kind on loaded scenes.
 #include "verifier/unique_stick.h"
 
 #include <gtest/gtest.h>
@@ -54,10 +54,10 @@ std::vector<Vec3> ring(const Vec3& f, double r, int count) {
   return out;
 }
 
-// Coulomb, written from the header: at the concave edge of the floor n1 = +z (mu1) and the wall n2 = +x (mu2),
-// e = n1 x n2 = +y, f = −N1 n1 − N2 n2 + t e sticks uniquely iff both faces are pressed and the friction of
-// both can hold the edge component (N1, N2 >= 0, |t| <= mu1 N1 + mu2 N2), or one face separates and f is
-// inside the other face's own cone.
+// Coulomb, written from the header: at the concave edge of the floor n1 = +z (mu1) and the wall n2 = +x
+// (mu2), e = n1 x n2 = +y, f = −N1 n1 − N2 n2 + t e sticks uniquely iff both faces are pressed and the
+// friction of both can hold the edge component (N1, N2 >= 0, |t| <= mu1 N1 + mu2 N2), or one face separates
+// and f is inside the other face's own cone.
 bool edge_sticks_uniquely(const Vec3& f, double mu1, double mu2) {
   const Vec3 d = f.normalized();
   const double N1 = -d.z(), N2 = -d.x(), t = d.y();
@@ -107,9 +107,10 @@ TEST(UniqueStick, IntersectionMarginIsTheSmallestFaceMargin) {
   // smaller of phi_i − angle(f, −n_i).
   const Vec3 n2(std::sin(0.1), 0, std::cos(0.1));
   const UniqueStick u = UniqueStick::intersection({kZ, n2}, {0.25, 0.5});
-  EXPECT_NEAR(u.margin(-kZ), std::atan(0.25), 1e-12);         // min(.2450, .4636 − .1)
-  EXPECT_NEAR(u.margin(-n2), std::atan(0.25) - 0.1, 1e-12);   // min(.2450 − .1, .4636)
-  EXPECT_NEAR(u.margin(from_down(0.05)), std::atan(0.25) - 0.05, 1e-12);  // min(.1950, .4636 − .15: −n2 leans to −x)
+  EXPECT_NEAR(u.margin(-kZ), std::atan(0.25), 1e-12);        // min(.2450, .4636 − .1)
+  EXPECT_NEAR(u.margin(-n2), std::atan(0.25) - 0.1, 1e-12);  // min(.2450 − .1, .4636)
+  EXPECT_NEAR(u.margin(from_down(0.05)), std::atan(0.25) - 0.05,
+              1e-12);  // min(.1950, .4636 − .15: −n2 leans to −x)
   // A convex edge (faces +z and +x): the diagonal push is pi/4 from either inward normal, outside both cones.
   const UniqueStick rim = UniqueStick::intersection({kZ, kX}, {0.25, 0.25});
   EXPECT_NEAR(rim.margin(-(kX + kZ)), std::atan(0.25) - pi / 4, 1e-12);
@@ -156,8 +157,9 @@ TEST(UniqueStick, ConcaveEdgeBisectorMarginIsTheKineticFacetAngle) {
 
 TEST(UniqueStick, ConcaveEdgePushIntoTheFloorIsBoundedByTheKineticFacet) {
   // −z: N1 = 1, N2 = 0, t = 0 is in the kinetic cone. Candidates: the floor rim phi = .2450, the wall rim
-  // pi/2 − phi, and the facet planes with normals (±.25, 1, ±.25)/sqrt 1.125 at asin(.25 / sqrt 1.125) = .2379
-  // (the value docs/verifier.md quotes). A lower bound: pulling off the wall the true limit is the rim .2450.
+  // pi/2 − phi, and the facet planes with normals (±.25, 1, ±.25)/sqrt 1.125 at asin(.25 / sqrt 1.125) =
+  // .2379 (the value docs/verifier.md quotes). A lower bound: pulling off the wall the true limit is the rim
+  // .2450.
   const UniqueStick edge = UniqueStick::concave_edge(kZ, 0.25, kX, 0.25);
   EXPECT_NEAR(edge.margin(-kZ), std::asin(0.25 / std::sqrt(1.125)), 1e-12);
   EXPECT_LT(edge.margin(-kZ), std::atan(0.25));
@@ -171,7 +173,8 @@ TEST(UniqueStick, ConcaveEdgeBeyondTheKineticLimitIsNotUniqueStick) {
   EXPECT_EQ(edge.margin(-Vec3(1, -0.51, 1)), 0.0);
   // Just inside: the facet for t < 0 has normal (−.25, 1, −.25); its dot with (−1, −.49, −1) is .01, so the
   // margin is asin(.01 / (sqrt 1.125 sqrt 2.2401)) = .0063 (the other facet and the rims are farther).
-  EXPECT_NEAR(edge.margin(-Vec3(1, 0.49, 1)), std::asin(0.01 / (std::sqrt(1.125) * std::sqrt(2.2401))), 1e-12);
+  EXPECT_NEAR(edge.margin(-Vec3(1, 0.49, 1)), std::asin(0.01 / (std::sqrt(1.125) * std::sqrt(2.2401))),
+              1e-12);
   // Along the edge: neither face pressed, the edge direction outside both face cones.
   EXPECT_EQ(edge.margin(kY), 0.0);
   EXPECT_EQ(edge.margin(-kY), 0.0);
@@ -179,8 +182,9 @@ TEST(UniqueStick, ConcaveEdgeBeyondTheKineticLimitIsNotUniqueStick) {
 
 TEST(UniqueStick, ConcaveEdgeKeepsTheFloorConeWhereTheWallSeparates) {
   const UniqueStick edge = UniqueStick::concave_edge(kZ, 0.25, kX, 0.25);
-  // (.1, 0, −1): pulls off the wall (N2 = −.1) and is atan .1 = .0997 inside the floor's cone: the floor rim is
-  // atan .25 − atan .1 = .1453 away (facets: asin(.225 / (sqrt 1.01 sqrt 1.125)) = .2127; wall rim 1.4255).
+  // (.1, 0, −1): pulls off the wall (N2 = −.1) and is atan .1 = .0997 inside the floor's cone: the floor rim
+  // is atan .25 − atan .1 = .1453 away (facets: asin(.225 / (sqrt 1.01 sqrt 1.125)) = .2127; wall
+  // rim 1.4255).
   EXPECT_NEAR(edge.margin(Vec3(0.1, 0, -1)), std::atan(0.25) - std::atan(0.1), 1e-12);
   // (.3, 0, −1): off the wall and atan .3 = .2915 > .2450 from the floor normal: it slides on the floor.
   EXPECT_EQ(edge.margin(Vec3(0.3, 0, -1)), 0.0);
@@ -341,7 +345,8 @@ TEST(UniqueStick, ForAtomTreatsAConcaveRoomCornerAsABoxCorner) {
   const auto t = block_room();
   const int v = test::vertex_at(t->cspace, Vec3(-4, -4, 0));  // walls +x, +y and the floor +z
   ASSERT_GE(v, 0);
-  EXPECT_NEAR(UniqueStick::for_atom(t->cspace, v).margin(-Vec3(1, 1, 1)), std::asin(1 / std::sqrt(3.0)), 1e-12);
+  EXPECT_NEAR(UniqueStick::for_atom(t->cspace, v).margin(-Vec3(1, 1, 1)), std::asin(1 / std::sqrt(3.0)),
+              1e-12);
 }
 
 TEST(UniqueStick, ForAtomUsesEveryFacesConeAtConvexEdgesAndCorners) {
@@ -357,14 +362,14 @@ TEST(UniqueStick, ForAtomUsesEveryFacesConeAtConvexEdgesAndCorners) {
   // acos(1/sqrt 3) = .9553 from each inward normal.
   const int top_corner = test::vertex_at(c, Vec3(1, 1, 1));
   ASSERT_GE(top_corner, 0);
-  EXPECT_NEAR(UniqueStick::for_atom(c, top_corner).margin(-Vec3(1, 1, 1)), phi - std::acos(1 / std::sqrt(3.0)),
-              1e-12);
-  // The foot of the block's vertical edge (−1, −1, 0): floor, sides −x and −y, mutually perpendicular, but the
-  // sides meet in a convex edge: pushing (1, 1, −1) into all three is not a box corner either.
+  EXPECT_NEAR(UniqueStick::for_atom(c, top_corner).margin(-Vec3(1, 1, 1)),
+              phi - std::acos(1 / std::sqrt(3.0)), 1e-12);
+  // The foot of the block's vertical edge (−1, −1, 0): floor, sides −x and −y, mutually perpendicular, but
+  // the sides meet in a convex edge: pushing (1, 1, −1) into all three is not a box corner either.
   const int foot_corner = test::vertex_at(c, Vec3(-1, -1, 0));
   ASSERT_GE(foot_corner, 0);
-  EXPECT_NEAR(UniqueStick::for_atom(c, foot_corner).margin(Vec3(1, 1, -1)), phi - std::acos(1 / std::sqrt(3.0)),
-              1e-12);
+  EXPECT_NEAR(UniqueStick::for_atom(c, foot_corner).margin(Vec3(1, 1, -1)),
+              phi - std::acos(1 / std::sqrt(3.0)), 1e-12);
 }
 
 TEST(UniqueStick, ForAtomFlatEdgeTakesTheSmallerFriction) {
