@@ -19,17 +19,7 @@ namespace {
 
 const Vec3 kX = Vec3::UnitX(), kY = Vec3::UnitY(), kZ = Vec3::UnitZ();
 
-std::shared_ptr<const LoadedTask> room(const std::string& obstacles) {
-  return load_task_from_string(
-      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
-      "0.1}\n"
-      "cspace: " +
-          obstacles +
-          "\nbounds: {min: [-4, -4, 0], max: [4, 4, 4]}\n"
-          "start: {point: [0, 0, 4]}\ngoal: {point: [0, 0, 4]}\nmotions:\n  m: {damper: [0, 0, -1]}\n"
-          "strategies:\n  s: [m]\n",
-      "test");
-}
+using test::room;
 
 // A 2 x 2 x 1 block [-1,1]^2 x [0,1] on the floor of the room [-4,4]^2 x [0,4], mu .25 everywhere.
 std::shared_ptr<const LoadedTask> block_room() { return room("[{box: {min: [-1, -1, 0], max: [1, 1, 1]}}]"); }

@@ -18,18 +18,7 @@ using test::edge_between;
 
 using test::face_at;
 
-// An empty room [-4,4] x [-4,4] x [0,4] (the robot is a point): the floor z = 0 is one 8 x 8 face.
-std::shared_ptr<const LoadedTask> room(const std::string& obstacles = "[]") {
-  return load_task_from_string(
-      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
-      "0.1}\n"
-      "cspace: " +
-          obstacles +
-          "\nbounds: {min: [-4, -4, 0], max: [4, 4, 4]}\n"
-          "start: {point: [0, 0, 4]}\ngoal: {point: [0, 0, 4]}\nmotions:\n  m: {damper: [0, 0, -1]}\n"
-          "strategies:\n  s: [m]\n",
-      "test");
-}
+using test::room;
 
 int vertex_at(const CSpace& c, const Vec3& p) {
   for (const Vertex& v : c.vertices())

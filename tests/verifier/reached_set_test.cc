@@ -31,17 +31,7 @@ const Vec3 kX = Vec3::UnitX(), kY = Vec3::UnitY(), kZ = Vec3::UnitZ();
 // room's 8-long edges that is 8e-12 in position, plus rounding.
 constexpr double kPositionSlack = 1e-11;
 
-std::shared_ptr<const LoadedTask> room(const std::string& obstacles = "[]") {
-  return load_task_from_string(
-      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
-      "0.1}\n"
-      "cspace: " +
-          obstacles +
-          "\nbounds: {min: [-4, -4, 0], max: [4, 4, 4]}\n"
-          "start: {point: [0, 0, 4]}\ngoal: {point: [0, 0, 4]}\nmotions:\n  m: {damper: [0, 0, -1]}\n"
-          "strategies:\n  s: [m]\n",
-      "test");
-}
+using test::room;
 
 // A ramp z = x for x in [0, 2] (normal (−1,0,1)/sqrt 2, y in [-4, 4]) on the room's floor.
 std::shared_ptr<const LoadedTask> ramp_room() {

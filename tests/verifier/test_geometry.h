@@ -1,9 +1,28 @@
 // Lookups shared by the verifier tests.
 #pragma once
 
+#include <memory>
+#include <string>
+
 #include "models/cspace.h"
+#include "models/loaded_task.h"
+#include "models/task_loader.h"
 
 namespace cmt::test {
+
+// An empty room [-4,4] x [-4,4] x [0,4] in C-space (the robot is a point), mu .25, with the given C-space
+// obstacles (a YAML list): without them the floor z = 0 is one 8 x 8 face. Scene scale 12 (the diagonal).
+inline std::shared_ptr<const LoadedTask> room(const std::string& obstacles = "[]") {
+  return load_task_from_string(
+      "name: t\nunits: in\nfriction: 0.25\nuncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: "
+      "0.1}\n"
+      "cspace: " +
+          obstacles +
+          "\nbounds: {min: [-4, -4, 0], max: [4, 4, 4]}\n"
+          "start: {point: [0, 0, 4]}\ngoal: {point: [0, 0, 4]}\nmotions:\n  m: {damper: [0, 0, -1]}\n"
+          "strategies:\n  s: [m]\n",
+      "test");
+}
 
 // The rollouts' stop rule (controllers/termination.h kStopRelativeSpeed, which the verifier's tests do not
 // link): a robot sliding slower than 1 % of its reference speed counts as stopped. With it a verdict is the
