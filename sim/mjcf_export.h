@@ -28,8 +28,9 @@ inline constexpr double kSoftLayerTimestep = 0.00025;
 // edge that matters: with d = 0.99 everywhere each face's contact lifted off while sliding and the other
 // face's friction wedged the robot into the edge (sliding up to 73 % slower than Coulomb).
 inline constexpr double kSoftLayerSolimpDmin = 0.01;
-// Impedance below the layer: stiff (the constant d = 0.99 of stiff_scene), so a loaded contact stops within ~1 um of
-// the surface (penetration at 1 in/s <= 3.5e-6 m, calibration) instead of sinking through a soft contact.
+// Impedance below the layer: stiff (the constant d = 0.99 of stiff_scene), so a loaded contact stops within
+// ~1 um of the surface (penetration at 1 in/s <= 3.5e-6 m, calibration) instead of sinking through a soft
+// contact.
 inline constexpr double kSoftLayerSolimpDmax = 0.99;
 // Layer depth, m (MuJoCo's r = contact.dist; box-box contacts report half the overlap, so ~2 um of overlap).
 // Absolute, not scaled with the task: it acts on the contact's micrometre-scale hop and penetration, which
