@@ -15,7 +15,6 @@
 #include "experiments/cli/rollout_cli.h"
 #include "experiments/cli/verify_command.h"
 #include "experiments/common/json_text.h"
-#include "experiments/common/verifier_budget.h"
 #include "experiments/validation/validation.h"
 #include "models/task_error.h"
 
@@ -86,35 +85,26 @@ ValidateOutput render(const LoadedTask& task, const ValidationResult& r, bool js
   return {out.str(), err.str(), contradicts_verifier(r) ? kExitFailureFound : kExitSuccess};
 }
 
-// The validation in a forked child whose verifier phase has `time_limit` seconds (verifier_budget.h); past
-// it, the child is killed and the rollouts run here without a prediction. A TaskError in the child comes
-// back whole (file, key, reason, place), so bad input still names its key.
+// The validation under the verifier's time limit (validate_with_verifier_budget), rendered where it ran. A
+// TaskError there comes back whole (file, key, reason, place), so bad input still names its key.
 ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask>& task,
                                           const std::string& text, const std::string& strategy,
-                                          ValidateOptions options, double time_limit, bool json,
+                                          const ValidateOptions& options, double time_limit, bool json,
                                           bool with_ends) {
-  const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
-    nlohmann::json payload;
-    try {
-      ValidateOptions o = options;
-      o.after_verify = phase_done;
-      const ValidateOutput v = render(*task, run_validation(task, text, strategy, o), json, with_ends);
-      payload = {{"out", v.out}, {"err", v.err}, {"exit_status", v.exit_status}};
-    } catch (const TaskError& e) {
-      payload = {{"task_error",
-                  {{"file", e.file()},
-                   {"key", e.key()},
-                   {"reason", e.reason()},
-                   {"line", e.where().line},
-                   {"column", e.where().column}}}};
-    }
-    return json_text(payload);
-  });
-  if (run.timed_out) {
-    options.verifier_timed_out_after = time_limit;
-    return render(*task, run_validation(task, text, strategy, options), json, with_ends);
-  }
-  const nlohmann::json payload = nlohmann::json::parse(run.payload);
+  const nlohmann::json payload =
+      nlohmann::json::parse(validate_with_verifier_budget(time_limit, options, [&](const ValidateOptions& o) {
+        try {
+          const ValidateOutput v = render(*task, run_validation(task, text, strategy, o), json, with_ends);
+          return json_text({{"out", v.out}, {"err", v.err}, {"exit_status", v.exit_status}});
+        } catch (const TaskError& e) {
+          return json_text({{"task_error",
+                             {{"file", e.file()},
+                              {"key", e.key()},
+                              {"reason", e.reason()},
+                              {"line", e.where().line},
+                              {"column", e.where().column}}}});
+        }
+      }));
   if (payload.contains("task_error")) {
     const nlohmann::json& e = payload["task_error"];
     throw TaskError(e["file"], e["key"], e["reason"], TextLocation{e["line"], e["column"]});

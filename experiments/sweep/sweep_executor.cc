@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "experiments/common/json_text.h"
-#include "experiments/common/verifier_budget.h"
 #include "experiments/results/unit_record_json.h"
 #include "experiments/validation/verify_json.h"
 
@@ -98,17 +97,10 @@ UnitExecutor make_validation_executor() {
       return unit_record(*cache->task, run_validation(cache->task, unit.task_yaml, unit.strategy, o));
     };
     if (unit.verify_budget_seconds <= 0) return validate(options);
-    // In a child process the parent can kill when the verifier overruns (verifier_budget.h); the child's
-    // record comes back as text, bit for bit.
-    const ForkedRun run =
-        run_forked_with_budget(unit.verify_budget_seconds, [&](const std::function<void()>& phase_done) {
-          ValidateOptions o = options;
-          o.after_verify = phase_done;
-          return unit_record_to_text(validate(o));
-        });
-    if (!run.timed_out) return unit_record_from_text(run.payload);
-    options.verifier_timed_out_after = unit.verify_budget_seconds;
-    return validate(options);
+    // The record comes back from the child process as text, bit for bit.
+    return unit_record_from_text(validate_with_verifier_budget(
+        unit.verify_budget_seconds, options,
+        [&](const ValidateOptions& o) { return unit_record_to_text(validate(o)); }));
   };
 }
 

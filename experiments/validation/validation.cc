@@ -120,4 +120,16 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
   return r;
 }
 
+std::string validate_with_verifier_budget(double budget, ValidateOptions options,
+                                          const std::function<std::string(const ValidateOptions&)>& work) {
+  const ForkedRun run = run_forked_with_budget(budget, [&](const std::function<void()>& phase_done) {
+    ValidateOptions o = options;
+    o.after_verify = phase_done;
+    return work(o);
+  });
+  if (!run.timed_out) return run.payload;
+  options.verifier_timed_out_after = budget;
+  return work(options);
+}
+
 }  // namespace cmt

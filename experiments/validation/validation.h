@@ -178,6 +178,13 @@ std::string replay_command(const LoadedTask& task, const std::string& strategy, 
 ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
                                 const std::string& strategy, const ValidateOptions& options);
 
+// Runs `work` (a validation with the options it is given, and whatever the caller makes of it, as text) in a
+// forked child whose verifier phase has `budget` seconds (experiments/common/verifier_budget.h; the child's
+// options.after_verify ends the phase). When the verifier overruns, the child is killed and `work` runs here
+// with verifier_timed_out_after = budget: the rollouts without a prediction. Returns work's text either way.
+std::string validate_with_verifier_budget(double budget, ValidateOptions options,
+                                          const std::function<std::string(const ValidateOptions&)>& work);
+
 // The `cmt validate --json` object: the contracts.md fields (reliable, rollouts, successes, outside,
 // soundness, coverage) and the rest of the result (prediction as verify_json, worst offenders, the
 // counterexample, the sticking table). `with_ends` adds every observed end.
