@@ -458,8 +458,23 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
       if (s1 >= 0 && s0 <= 1) cover.push_back({std::max(0.0, s0), std::min(1.0, s1)});
     }
   }
+  // A vertex covers the part of [a, b] within tol of it: the s in [0, 1] with |a + s (b − a) − v| <= tol (a
+  // rounding sliver of an edge or face beside a goal vertex is contained, as the tolerance promises).
   for (std::size_t vi = 0; vi < im.vertices.size(); ++vi)
-    if (im.vertices[vi] && len == 0 && (c.vertices()[vi].point - a).norm() <= tol) cover.push_back({0, 1});
+    if (im.vertices[vi]) {
+      const Vec3 av = a - c.vertices()[vi].point;
+      if (len == 0) {
+        if (av.norm() <= tol) cover.push_back({0, 1});
+        continue;
+      }
+      const Vec3 d = b - a;
+      const double qa = d.squaredNorm(), qb = d.dot(av), qc = av.squaredNorm() - tol * tol;
+      const double disc = qb * qb - qa * qc;
+      if (disc < 0) continue;
+      const double root = std::sqrt(disc);
+      const double s0 = (-qb - root) / qa, s1 = (-qb + root) / qa;
+      if (s1 >= 0 && s0 <= 1) cover.push_back({std::max(0.0, s0), std::min(1.0, s1)});
+    }
   std::sort(cover.begin(), cover.end());
   double reach = 0;
   const double gap = len > 0 ? tol / len : 0;
@@ -468,6 +483,50 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
     reach = std::max(reach, s1);
   }
   return !cover.empty() && reach >= 1 - gap;
+}
+
+// Does every point of the convex hull of `pts` lie within `tol` of one convex part of the container (a
+// vertex, an edge interval, a face segment or point, a convex piece of a face region)? The distance to a
+// convex set is a convex function, so its largest value over a convex hull is at one of the points.
+bool convex_piece_near(const std::vector<Vec3>& pts, const ReachedSet& container, double tol) {
+  const ReachedSet::Impl& im = container.impl();
+  const CSpace& c = container.cspace();
+  const auto all_within = [&](const auto& dist) {
+    for (const Vec3& p : pts)
+      if (!(dist(p) <= tol)) return false;
+    return true;
+  };
+  for (std::size_t vi = 0; vi < im.vertices.size(); ++vi)
+    if (im.vertices[vi] && all_within([&](const Vec3& p) { return (p - c.vertices()[vi].point).norm(); }))
+      return true;
+  for (std::size_t ei = 0; ei < im.edges.size(); ++ei) {
+    const Edge& e = c.edges()[ei];
+    for (const EdgeInterval& iv : im.edges[ei]) {
+      const Vec3 a = e.a + iv.t0 * (e.b - e.a), b = e.a + iv.t1 * (e.b - e.a);
+      if (all_within([&](const Vec3& p) { return distance_to_segment(p, a, b); })) return true;
+    }
+  }
+  for (std::size_t fi = 0; fi < im.faces.size(); ++fi) {
+    const fp::FaceSet& fs = im.faces[fi];
+    const fp::FaceChart& chart = im.charts[fi];
+    for (const fp::Segment2& sg : fs.segments) {
+      const Vec3 a = chart.lift_double(sg.source()), b = chart.lift_double(sg.target());
+      if (all_within([&](const Vec3& p) { return distance_to_segment(p, a, b); })) return true;
+    }
+    for (const Point2& q : fs.points) {
+      const Vec3 a = chart.lift_double(q);
+      if (all_within([&](const Vec3& p) { return (p - a).norm(); })) return true;
+    }
+    if (fs.region.is_empty()) continue;
+    const Vec3& n = c.faces()[fi].normal;
+    for (const Points2& piece : fp::convex_pieces(fs.region)) {
+      std::vector<Vec3> poly;
+      for (const Point2& q : piece) poly.push_back(chart.lift_double(q));
+      if (chart.flips) std::reverse(poly.begin(), poly.end());  // counter-clockwise about the normal
+      if (all_within([&](const Vec3& p) { return distance_to_convex_polygon(p, poly, n); })) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -482,7 +541,20 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
     const fp::FaceChart& chart = impl_->charts[fi];
     PolygonSet2 rest = fs.region;
     rest.difference(container.impl_->faces[fi].region);  // exact containment per face
-    region_pieces(rest, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
+    if (rest.is_empty()) continue;
+    // A remainder whose every convex piece lies within tol of one convex part of the container (a rounding
+    // sliver beside a goal edge or vertex) is contained, as the tolerance promises; otherwise the whole
+    // remainder is reported.
+    bool near = true;
+    for (const Points2& piece : fp::convex_pieces(rest)) {
+      std::vector<Vec3> pts;
+      for (const Point2& q : piece) pts.push_back(chart.lift_double(q));
+      if (!convex_piece_near(pts, container, tol)) {
+        near = false;
+        break;
+      }
+    }
+    if (!near) region_pieces(rest, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
   }
   for (const ReachedPiece& p : pieces()) {
     if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) continue;

@@ -445,6 +445,51 @@ TEST(ReachedSet, PiecesOutsideReportsWhatTheContainerMisses) {
   EXPECT_EQ(out[0].atom, r.far_corner);
 }
 
+// Rounding slivers beside a goal atom within the tolerance are contained (issue: a corner goal must be
+// verifiable); anything reaching farther than the tolerance is still reported.
+TEST(ReachedSet, PiecesOutsideAcceptsSliversWithinTheToleranceOfAVertexOrEdge) {
+  const auto t = room();
+  const Room r(t->cspace);
+  ASSERT_TRUE(r.ok());
+  ReachedSet corner(t->cspace);
+  corner.add_vertex(r.corner);  // (-4, -4, 0)
+  // An upright interval 4e-12 long from the corner (t in [0, 1e-12] of the 4-long edge): within 1e-9.
+  ReachedSet edge_sliver(t->cspace);
+  edge_sliver.add_edge_interval(r.upright, 0, 1e-12);
+  EXPECT_TRUE(edge_sliver.pieces_outside(corner, 1e-9).empty());
+  // 4e-4 long: its far end is 4e-4 from the corner, beyond 1e-9 and beyond 1e-5, within 1e-3.
+  ReachedSet edge_piece(t->cspace);
+  edge_piece.add_edge_interval(r.upright, 0, 1e-4);
+  EXPECT_EQ(edge_piece.pieces_outside(corner, 1e-5).size(), 1u);
+  EXPECT_TRUE(edge_piece.pieces_outside(corner, 1e-3).empty());
+  // An interval that passes the corner's 1e-9 ball without ending in it: [0, 1e-12] is near, [0.5, 1] not.
+  ReachedSet two(t->cspace);
+  two.add_edge_interval(r.upright, 0, 1e-12);
+  two.add_edge_interval(r.upright, 0.5, 1);
+  EXPECT_EQ(two.pieces_outside(corner, 1e-9).size(), 1u);
+  // A floor triangle of legs 1e-10 at the corner: every point within 1.5e-10 of it.
+  ReachedSet face_sliver(t->cspace);
+  face_sliver.add_face_polygon(r.floor, {{-4, -4, 0}, {-4 + 1e-10, -4, 0}, {-4, -4 + 1e-10, 0}});
+  EXPECT_TRUE(face_sliver.pieces_outside(corner, 1e-9).empty());
+  // Legs 1e-3: reported, with its area.
+  ReachedSet face_piece(t->cspace);
+  face_piece.add_face_polygon(r.floor, {{-4, -4, 0}, {-4 + 1e-3, -4, 0}, {-4, -4 + 1e-3, 0}});
+  const auto out = face_piece.pieces_outside(corner, 1e-9);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].atom, r.floor);
+  EXPECT_NEAR(out[0].area, 5e-7, 1e-18);
+  // A floor strip 2e-10 wide along the whole front edge (y = -4): within 1e-9 of the edge, not of a vertex.
+  ReachedSet front_edge(t->cspace), strip(t->cspace);
+  front_edge.add_whole_atom(r.front);
+  strip.add_face_polygon(r.floor, square(-4, -4, 4, -4 + 2e-10));
+  EXPECT_TRUE(strip.pieces_outside(front_edge, 1e-9).empty());
+  EXPECT_EQ(strip.pieces_outside(corner, 1e-9).size(), 1u);
+  // The same strip 1e-6 wide: beyond 1e-9 of the edge.
+  ReachedSet wide_strip(t->cspace);
+  wide_strip.add_face_polygon(r.floor, square(-4, -4, 4, -4 + 1e-6));
+  EXPECT_EQ(wide_strip.pieces_outside(front_edge, 1e-9).size(), 1u);
+}
+
 // ---- task regions ----
 
 TEST(ReachedSet, FromRegionLocatesAPointOnAFaceAnEdgeOrAVertex) {
