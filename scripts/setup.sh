@@ -8,6 +8,7 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtbb-dev libsqlite3-dev libfmt-dev
   libopenmpi-dev openmpi-bin
+  libjs-three chromium  # the 3-D pages (cmt view, cmt report) and their browser test
 )
 missing=()
 for p in "${packages[@]}"; do

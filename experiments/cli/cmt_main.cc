@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   cmt::add_verify_command(app, state);
   cmt::add_check_sticking_command(app, state);
   cmt::add_report_command(app, state);
+  cmt::add_view_command(app, state);
   cmt::add_validate_command(app, state);
   cmt::add_sweep_command(app, state);
   cmt::add_merge_command(app, state);

@@ -20,6 +20,7 @@ void add_sticking_command(CLI::App& app, CommandState& state);
 void add_verify_command(CLI::App& app, CommandState& state);
 void add_check_sticking_command(CLI::App& app, CommandState& state);
 void add_report_command(CLI::App& app, CommandState& state);
+void add_view_command(CLI::App& app, CommandState& state);
 void add_validate_command(CLI::App& app, CommandState& state);
 void add_sweep_command(CLI::App& app, CommandState& state);
 void add_merge_command(CLI::App& app, CommandState& state);

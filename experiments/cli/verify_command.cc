@@ -15,14 +15,12 @@
 #include "models/task_error.h"
 
 namespace cmt {
-namespace {
-
 // The verification in a forked child under the wall-clock limit (experiments/common/verifier_budget.h: the
 // verifier has no cancellation points, so only a separate process can be stopped). Returns verify_json, the
 // time-out answer, or {"error": message} for a motion the verifier does not support (bad input).
-nlohmann::json verify_within_time_limit(const LoadedTask& task, const Strategy& strategy,
-                                        const VerifyOptions& options, double time_limit, bool with_reached,
-                                        std::chrono::steady_clock::time_point start) {
+nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strategy& strategy,
+                                             const VerifyOptions& options, double time_limit,
+                                             bool with_reached, std::chrono::steady_clock::time_point start) {
   const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
     nlohmann::json out;
     try {
@@ -52,8 +50,6 @@ nlohmann::json verify_within_time_limit(const LoadedTask& task, const Strategy& 
           {"stop_relative_speed", options.stop_relative_speed},
           {"contact_lift", options.contact_lift}};
 }
-
-}  // namespace
 
 void add_verify_command(CLI::App& app, CommandState& state) {
   struct Options {
@@ -110,8 +106,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     const VerifyOptions verify_options{
         options->spring_model, options->stop_relative_speed,
         options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)};
-    const nlohmann::json j = verify_within_time_limit(*task, strategy, verify_options, options->time_limit,
-                                                      options->reached, start);
+    const nlohmann::json j = verify_json_within_time_limit(*task, strategy, verify_options,
+                                                           options->time_limit, options->reached, start);
     if (j.contains("error")) {
       state.exit_status = report_bad_input(j["error"].get<std::string>(), state.json);
       return;

@@ -6,8 +6,20 @@
 // ran out of time is not reliable, with timed_out true, time_limit, an empty steps list and exit status 1.
 #pragma once
 
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "models/loaded_task.h"
+#include "verifier/verify.h"
+
 namespace cmt {
 
 inline constexpr double kDefaultVerifyTimeLimit = 600;  // seconds
+
+// The verification in a forked child under the wall-clock limit `time_limit` (s): verify_json, the time-out
+// answer (timed_out true, not reliable), or {"error": message} for a motion the verifier does not support.
+nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strategy& strategy,
+                                             const VerifyOptions& options, double time_limit,
+                                             bool with_reached, std::chrono::steady_clock::time_point start);
 
 }  // namespace cmt

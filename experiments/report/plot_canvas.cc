@@ -153,6 +153,22 @@ void PlotCanvas::rectangle(const Point2& a, const Point2& b, const cv::Scalar& c
   if (finite(a) && finite(b)) cv::rectangle(area_, pixel(a), pixel(b), color, cv::FILLED, cv::LINE_8);
 }
 
+void PlotCanvas::marker(const Point2& p, LegendMarker shape, int radius_px, const cv::Scalar& color) {
+  if (finite(p)) draw_point_marker(area_, pixel(p), shape, radius_px, color);
+}
+
+void PlotCanvas::text(const Point2& p, const std::string& label, const cv::Point& offset_px,
+                      TextAnchor anchor, const cv::Scalar& color) {
+  if (!finite(p)) return;
+  int baseline = 0;
+  const cv::Size s = cv::getTextSize(label, kFont, kDataLabelScale, 1, &baseline);
+  const cv::Point at = pixel(p) + offset_px;
+  const int left = anchor == TextAnchor::kLeft    ? at.x
+                   : anchor == TextAnchor::kRight ? at.x - s.width
+                                                  : at.x - s.width / 2;
+  cv::putText(area_, label, {left, at.y + s.height / 2}, kFont, kDataLabelScale, color, 1, cv::LINE_AA);
+}
+
 void PlotCanvas::draw_axes() {
   cv::rectangle(image_, plot_, kInk, 1);
   int baseline = 0;

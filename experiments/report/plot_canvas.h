@@ -16,6 +16,10 @@
 
 namespace cmt::report {
 
+// Which point of a text label sits at its anchor: its centre, its left end or its right end (all vertically
+// centred).
+enum class TextAnchor { kCenter, kLeft, kRight };
+
 struct Range {
   double min = 0, max = 1;
 };
@@ -54,6 +58,11 @@ class PlotCanvas {
   // A circle of data radius r (equal-aspect plots only), filled when fill is true.
   void circle(const Point2& center, double r, const cv::Scalar& color, bool fill, int thickness = 1);
   void rectangle(const Point2& a, const Point2& b, const cv::Scalar& color);  // filled
+  // A point marker as the legend draws it (plot_legend.h draw_point_marker), radius_px around p.
+  void marker(const Point2& p, LegendMarker shape, int radius_px, const cv::Scalar& color);
+  // A small text label (plot_style.h kDataLabelScale) anchored offset_px away from p.
+  void text(const Point2& p, const std::string& label, const cv::Point& offset_px, TextAnchor anchor,
+            const cv::Scalar& color);
 
   void add_legend(LegendEntry entry) { legend_.push_back(std::move(entry)); }
 

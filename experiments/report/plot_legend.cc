@@ -24,6 +24,14 @@ const char* marker_name(LegendMarker m) {
       return "dot";
     case LegendMarker::kCross:
       return "cross";
+    case LegendMarker::kSquare:
+      return "square";
+    case LegendMarker::kDiamond:
+      return "diamond";
+    case LegendMarker::kTriangle:
+      return "triangle";
+    case LegendMarker::kNone:
+      return "none";
   }
   return "fill";
 }
@@ -45,13 +53,50 @@ void draw_marker(cv::Mat& image, const cv::Rect& cell, const LegendEntry& e) {
       cv::circle(image, c, 4, e.color, cv::FILLED);
       break;
     case LegendMarker::kCross:
-      cv::line(image, c + cv::Point(-5, -5), c + cv::Point(5, 5), e.color, 2);
-      cv::line(image, c + cv::Point(-5, 5), c + cv::Point(5, -5), e.color, 2);
+      draw_point_marker(image, c, e.marker, 5, e.color);
+      break;
+    case LegendMarker::kSquare:
+    case LegendMarker::kDiamond:
+    case LegendMarker::kTriangle:
+      draw_point_marker(image, c, e.marker, kMarkerHeight / 2, e.color);
+      break;
+    case LegendMarker::kNone:
       break;
   }
 }
 
+void fill_convex(cv::Mat& image, const std::vector<cv::Point>& corners, const cv::Scalar& color) {
+  cv::fillConvexPoly(image, corners, color, cv::LINE_8);
+}
+
 }  // namespace
+
+void draw_point_marker(cv::Mat& image, const cv::Point& center, LegendMarker shape, int r,
+                       const cv::Scalar& color) {
+  const cv::Point& c = center;
+  switch (shape) {
+    case LegendMarker::kDot:
+      cv::circle(image, c, r, color, cv::FILLED, cv::LINE_8);
+      break;
+    case LegendMarker::kCross:
+      cv::line(image, c + cv::Point(-r, -r), c + cv::Point(r, r), color, 2, cv::LINE_8);
+      cv::line(image, c + cv::Point(-r, r), c + cv::Point(r, -r), color, 2, cv::LINE_8);
+      break;
+    case LegendMarker::kSquare:
+      cv::rectangle(image, c + cv::Point(-r, -r), c + cv::Point(r, r), color, cv::FILLED, cv::LINE_8);
+      break;
+    case LegendMarker::kDiamond:
+      fill_convex(image,
+                  {c + cv::Point(0, -r), c + cv::Point(r, 0), c + cv::Point(0, r), c + cv::Point(-r, 0)},
+                  color);
+      break;
+    case LegendMarker::kTriangle:
+      fill_convex(image, {c + cv::Point(0, -r), c + cv::Point(r, r), c + cv::Point(-r, r)}, color);
+      break;
+    default:
+      break;
+  }
+}
 
 void draw_legend(cv::Mat& image, const cv::Rect& box, const std::vector<LegendEntry>& entries) {
   if (entries.empty()) return;

@@ -36,5 +36,6 @@ inline constexpr double kTitleScale = 0.62;
 inline constexpr double kLabelScale = 0.52;
 inline constexpr double kTickScale = 0.42;
 inline constexpr double kLegendScale = 0.42;
+inline constexpr double kDataLabelScale = 0.38;  // numbers written beside data points
 
 }  // namespace cmt::report

@@ -12,6 +12,8 @@
 #include "experiments/report/report_table.h"
 #include "experiments/report/results_db.h"
 #include "experiments/report/sticking_figure.h"
+#include "experiments/report/view_data.h"
+#include "experiments/report/view_page.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
 
@@ -19,7 +21,8 @@ namespace cmt::report {
 namespace {
 
 constexpr const char* kFigureDir = "figures";
-constexpr const char* kFigurePrefix = "config_";  // every figure this command writes starts so
+constexpr const char* kFigurePrefix = "config_";  // every figure and 3-D page this command writes starts so
+constexpr const char* kViewDir = "view";          // 3-D pages (view_page.h) and their shared assets
 
 std::string key(const ConfigRow& c, const std::string& column) {
   return column + " (config_id " + std::to_string(c.config_id) + ")";
@@ -31,13 +34,16 @@ void prepare_output(const std::filesystem::path& out_dir) {
   if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
     throw TaskError(out_dir.string(), "-o", "exists and is not a directory");
   std::filesystem::create_directories(out_dir / kFigureDir, ec);
+  if (!ec) std::filesystem::create_directories(out_dir / kViewDir, ec);
   if (ec)
     throw std::runtime_error(out_dir.string() + ": cannot create the report directory: " + ec.message());
-  for (const auto& entry : std::filesystem::directory_iterator(out_dir / kFigureDir)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && name.rfind(kFigurePrefix, 0) == 0 && entry.path().extension() == ".png")
-      std::filesystem::remove(entry.path());
-  }
+  for (const auto& [dir, extension] : {std::pair{kFigureDir, ".png"}, std::pair{kViewDir, ".html"}})
+    for (const auto& entry : std::filesystem::directory_iterator(out_dir / dir)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_regular_file() && name.rfind(kFigurePrefix, 0) == 0 &&
+          entry.path().extension() == extension)
+        std::filesystem::remove(entry.path());
+    }
 }
 
 class ReportBuilder {
@@ -70,6 +76,7 @@ class ReportBuilder {
       const PlotCanvas canvas = draw_cspace_view(data, view);
       save(canvas, c, view_name(view), std::string(view_name(view)) + " view", s);
     }
+    write_view(data, c, s);
     if (c.metrics && !c.metrics->sticking.is_null()) {
       std::optional<PlotCanvas> canvas;
       try {
@@ -88,6 +95,22 @@ class ReportBuilder {
   const nlohmann::json& figures() const { return figures_; }
 
  private:
+  // The configuration's 3-D page (view_page.h) in DIR/view/, beside the assets written once for all. Without
+  // three.js the report is still written, with a note saying what to install.
+  void write_view(const CSpaceFigureData& figure, const ConfigRow& c, ConfigSection& s) {
+    try {
+      if (!view_assets_written_) write_view_assets(out_dir_ / kViewDir);
+      view_assets_written_ = true;
+      ViewInput input{figure.task, figure.title, figure.motions, figure.prediction, figure.rollouts, {}};
+      const std::string page =
+          std::string(kViewDir) + "/" + kFigurePrefix + std::to_string(c.config_id) + ".html";
+      write_view_page(view_data(input), out_dir_ / page, ".");
+      s.view_page = page;
+    } catch (const std::runtime_error& e) {
+      s.notes.push_back(std::string("no 3-D page: ") + e.what());
+    }
+  }
+
   // Configurations of one task share its YAML text, and building a C-space is the slow part.
   std::shared_ptr<const LoadedTask> loaded(const ConfigRow& c) {
     auto it = tasks_.find(c.task_yaml);
@@ -142,6 +165,7 @@ class ReportBuilder {
   std::filesystem::path out_dir_;
   std::map<std::string, std::shared_ptr<const LoadedTask>> tasks_;
   nlohmann::json figures_ = nlohmann::json::array();
+  bool view_assets_written_ = false;
 };
 
 }  // namespace

@@ -33,20 +33,35 @@ std::string md_code(const std::string& s) {
   return out;
 }
 
+std::string md_span(const Span& s) {
+  std::string out;
+  if (!s.image.empty()) {
+    out += "![";
+    out += md_escape(s.text);
+    out += "](";
+    out += s.image;
+    out += ')';
+    if (s.href.empty()) return out;
+    return "[" + out + "](" + s.href + ")";
+  }
+  if (!s.href.empty()) {
+    out += '[';
+    out += md_escape(s.text);
+    out += "](";
+    out += s.href;
+    out += ')';
+  } else if (s.code)
+    out += md_code(s.text);
+  else
+    out += md_escape(s.text);
+  return out;
+}
+
 std::string md_cell(const Cell& cell) {
   std::string out;
   for (const Span& s : cell) {
     if (!out.empty()) out += ' ';
-    if (!s.href.empty()) {
-      out += '[';
-      out += md_escape(s.text);
-      out += "](";
-      out += s.href;
-      out += ')';
-    } else if (s.code)
-      out += md_code(s.text);
-    else
-      out += md_escape(s.text);
+    out += md_span(s);
   }
   return out;
 }
@@ -74,21 +89,153 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+// Thumbnails are shown at this width; the PNG is the full figure, one click away.
+constexpr int kThumbnailWidth = 120;
+
+std::string html_span(const Span& s) {
+  std::string out;
+  if (!s.image.empty()) {
+    out = "<img class=\"thumb\" src=\"" + html_escape(s.image) + "\" alt=\"" + html_escape(s.text) +
+          "\" width=\"" + std::to_string(kThumbnailWidth) + "\">";
+    return s.href.empty() ? out : "<a href=\"" + html_escape(s.href) + "\">" + out + "</a>";
+  }
+  if (!s.href.empty()) return "<a href=\"" + html_escape(s.href) + "\">" + html_escape(s.text) + "</a>";
+  if (s.code) return "<code>" + html_escape(s.text) + "</code>";
+  return html_escape(s.text);
+}
+
 std::string html_cell(const Cell& cell) {
   std::string out;
   for (const Span& s : cell) {
     if (!out.empty()) out += ' ';
-    if (!s.href.empty())
-      out += "<a href=\"" + html_escape(s.href) + "\">" + html_escape(s.text) + "</a>";
-    else if (s.code)
-      out += "<code>" + html_escape(s.text) + "</code>";
-    else
-      out += html_escape(s.text);
+    out += html_span(s);
   }
   return out;
 }
 
-std::string anchor(const ConfigSection& s) { return "config-" + std::to_string(s.row->config_id); }
+// ---- Markdown ----
+
+void md_summary(std::ostream& md, const ReportContent& c) {
+  md << "## Summary\n\n";
+  for (const SummaryLine& line : c.summary)
+    md << "- **" << line.label << ":** " << md_escape(line.text) << "\n";
+  md << "\n";
+}
+
+void md_table(std::ostream& md, const Table& t) {
+  md << "|";
+  for (const std::string& h : t.headers) md << " " << md_escape(h) << " |";
+  md << "\n|";
+  for (std::size_t i = 0; i < t.headers.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : t.rows) {
+    md << "|";
+    for (const Cell& cell : row) md << " " << md_cell(cell) << " |";
+    md << "\n";
+  }
+  md << "\n";
+}
+
+void md_section(std::ostream& md, const ConfigSection& s) {
+  md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
+  if (!s.view_page.empty()) md << "[3-D view](" << s.view_page << ")\n\n";
+  md << "Unit `" << md_escape(s.row->unit_key) << "`, status " << s.row->status << ".\n\n";
+  for (const std::string& n : s.notes) md << "- " << md_escape(n) << "\n";
+  if (!s.notes.empty()) md << "\n";
+  for (const FigureRef& f : s.figures) md << "![" << md_escape(f.caption) << "](" << f.file << ")\n";
+  if (!s.figures.empty()) md << "\n";
+}
+
+// ---- HTML ----
+
+const char* const kStyle = R"css(body { font-family: sans-serif; margin: 1.5em; }
+table { border-collapse: collapse; font-size: 0.85em; }
+th, td { border: 1px solid #bbb; padding: 3px 6px; text-align: left; vertical-align: top;
+  overflow-wrap: anywhere; }
+th { background: #eee; }
+code { overflow-wrap: anywhere; }
+table.overview { table-layout: fixed; width: 100%; }
+table.overview td { vertical-align: middle; }
+table.overview a { white-space: nowrap; }
+details { margin: 0.5em 0; }
+table.summary th, table.details th { width: 12em; }
+table.details { max-width: 100%; }
+img.thumb { width: 120px; height: auto; border: 1px solid #ddd; display: block; }
+section.config { border-top: 2px solid #ccc; margin-top: 1.5em; }
+figure { display: inline-block; margin: 0.5em; }
+figure img { max-width: 100%; width: 640px; border: 1px solid #ddd; }
+)css";
+
+void html_head(std::ostream& h) {
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" << kTitle
+    << "</title>\n<style>\n"
+    << kStyle << "</style>\n</head>\n<body>\n";
+}
+
+void html_summary(std::ostream& h, const ReportContent& c) {
+  h << "<h2 id=\"summary\">Summary</h2>\n<table class=\"summary\">\n";
+  for (const SummaryLine& line : c.summary)
+    h << "<tr><th>" << html_escape(line.label) << "</th><td>" << html_escape(line.text) << "</td></tr>\n";
+  h << "</table>\n";
+}
+
+void html_runs(std::ostream& h, const ReportContent& c) {
+  if (c.runs.empty()) return;
+  h << "<details><summary>" << c.runs.size() << " sweep run" << (c.runs.size() == 1 ? "" : "s")
+    << "</summary>\n<ul>\n";
+  for (const std::string& r : c.runs) h << "<li>" << html_escape(r) << "</li>\n";
+  h << "</ul>\n</details>\n";
+}
+
+// The overview: fixed layout at the page's width, so long labels wrap instead of widening the table.
+void html_overview(std::ostream& h, const Table& t) {
+  h << "<h2 id=\"overview\">Configurations</h2>\n<table class=\"overview\">\n<colgroup>";
+  for (std::size_t k = 0; k < t.headers.size(); ++k) {
+    const std::string width = k < t.widths.size() ? t.widths[k] : "";
+    h << (width.empty() ? "<col>" : "<col style=\"width: " + width + "\">");
+  }
+  h << "</colgroup>\n<tr>";
+  for (const std::string& head : t.headers) h << "<th>" << html_escape(head) << "</th>";
+  h << "</tr>\n";
+  for (const auto& row : t.rows) {
+    h << "<tr>";
+    for (const Cell& cell : row) h << "<td>" << html_cell(cell) << "</td>";
+    h << "</tr>\n";
+  }
+  h << "</table>\n";
+}
+
+// Every column of the configuration's row of the full table, one per line.
+void html_details_table(std::ostream& h, const Table& t, std::size_t row) {
+  if (row >= t.rows.size()) return;
+  h << "<table class=\"details\">\n";
+  for (std::size_t k = 0; k < t.headers.size() && k < t.rows[row].size(); ++k)
+    h << "<tr><th>" << html_escape(t.headers[k]) << "</th><td>" << html_cell(t.rows[row][k])
+      << "</td></tr>\n";
+  h << "</table>\n";
+}
+
+void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
+  const ConfigSection& s = c.sections[i];
+  h << "<section class=\"config\" id=\"" << section_anchor(*s.row) << "\">\n<h3>Config " << s.row->config_id
+    << ": " << html_escape(s.label) << "</h3>\n<p>";
+  if (!s.view_page.empty()) h << "<a href=\"" << html_escape(s.view_page) << "\">3-D view</a> | ";
+  h << "<a href=\"#overview\">back to the table</a></p>\n";
+  h << "<p>Unit <code>" << html_escape(s.row->unit_key) << "</code>, status " << html_escape(s.row->status)
+    << ".</p>\n";
+  html_details_table(h, c.table, i);
+  if (!s.notes.empty()) {
+    h << "<ul>\n";
+    for (const std::string& n : s.notes) h << "<li>" << html_escape(n) << "</li>\n";
+    h << "</ul>\n";
+  }
+  for (const FigureRef& f : s.figures)
+    h << "<figure><a href=\"" << html_escape(f.file) << "\"><img src=\"" << html_escape(f.file) << "\" alt=\""
+      << html_escape(f.caption) << "\"></a><figcaption>" << html_escape(f.caption)
+      << "</figcaption></figure>\n";
+  h << "</section>\n";
+}
 
 }  // namespace
 
@@ -96,80 +243,25 @@ std::string render_markdown(const ReportContent& c) {
   std::ostringstream md;
   md << "# " << kTitle << "\n\n";
   md << "Database: `" << c.database << "`\n\n";
+  md_summary(md, c);
+  if (!c.runs.empty()) md << "Sweep runs:\n\n";
   for (const std::string& r : c.runs) md << "- " << r << "\n";
   if (!c.runs.empty()) md << "\n";
-  md << "**Summary:** " << c.summary << "\n\n";
-  md << "## Configurations\n\n|";
-  for (const std::string& h : c.table.headers) md << " " << md_escape(h) << " |";
-  md << "\n|";
-  for (std::size_t i = 0; i < c.table.headers.size(); ++i) md << "---|";
-  md << "\n";
-  for (const auto& row : c.table.rows) {
-    md << "|";
-    for (const Cell& cell : row) md << " " << md_cell(cell) << " |";
-    md << "\n";
-  }
-  md << "\n";
-  for (const ConfigSection& s : c.sections) {
-    md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
-    md << "Unit `" << md_escape(s.row->unit_key) << "`, status " << s.row->status << ".\n\n";
-    for (const std::string& n : s.notes) md << "- " << md_escape(n) << "\n";
-    if (!s.notes.empty()) md << "\n";
-    for (const FigureRef& f : s.figures) md << "![" << md_escape(f.caption) << "](" << f.file << ")\n";
-    if (!s.figures.empty()) md << "\n";
-  }
+  md << "## Configurations\n\n";
+  md_table(md, c.table);
+  for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
 
 std::string render_html(const ReportContent& c) {
   std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << kTitle
-    << "</title>\n<style>\n"
-    << "body { font-family: sans-serif; margin: 1.5em; }\n"
-    << "table { border-collapse: collapse; font-size: 0.85em; }\n"
-    << "th, td { border: 1px solid #bbb; padding: 3px 6px; text-align: left; vertical-align: top; }\n"
-    << "th { background: #eee; }\n"
-    << "figure { display: inline-block; margin: 0.5em; }\n"
-    << "img { max-width: 100%; width: 640px; border: 1px solid #ddd; }\n"
-    << "</style>\n</head>\n<body>\n";
+  html_head(h);
   h << "<h1>" << kTitle << "</h1>\n<p>Database: <code>" << html_escape(c.database) << "</code></p>\n";
-  if (!c.runs.empty()) {
-    h << "<ul>\n";
-    for (const std::string& r : c.runs) h << "<li>" << html_escape(r) << "</li>\n";
-    h << "</ul>\n";
-  }
-  h << "<p><strong>Summary:</strong> " << html_escape(c.summary) << "</p>\n";
-  h << "<h2>Configurations</h2>\n<table>\n<tr>";
-  for (const std::string& head : c.table.headers) h << "<th>" << html_escape(head) << "</th>";
-  h << "</tr>\n";
-  for (std::size_t i = 0; i < c.table.rows.size(); ++i) {
-    h << "<tr>";
-    for (std::size_t k = 0; k < c.table.rows[i].size(); ++k) {
-      const std::string cell = html_cell(c.table.rows[i][k]);
-      // The config id links to its section.
-      if (k == 0 && i < c.sections.size())
-        h << "<td><a href=\"#" << anchor(c.sections[i]) << "\">" << cell << "</a></td>";
-      else
-        h << "<td>" << cell << "</td>";
-    }
-    h << "</tr>\n";
-  }
-  h << "</table>\n";
-  for (const ConfigSection& s : c.sections) {
-    h << "<h2 id=\"" << anchor(s) << "\">Config " << s.row->config_id << ": " << html_escape(s.label)
-      << "</h2>\n";
-    h << "<p>Unit <code>" << html_escape(s.row->unit_key) << "</code>, status " << html_escape(s.row->status)
-      << ".</p>\n";
-    if (!s.notes.empty()) {
-      h << "<ul>\n";
-      for (const std::string& n : s.notes) h << "<li>" << html_escape(n) << "</li>\n";
-      h << "</ul>\n";
-    }
-    for (const FigureRef& f : s.figures)
-      h << "<figure><a href=\"" << html_escape(f.file) << "\"><img src=\"" << html_escape(f.file)
-        << "\" alt=\"" << html_escape(f.caption) << "\"></a><figcaption>" << html_escape(f.caption)
-        << "</figcaption></figure>\n";
-  }
+  html_summary(h, c);
+  html_runs(h, c);
+  html_overview(h, c.overview);
+  h << "<h2 id=\"details\">Details per configuration</h2>\n";
+  for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";
   return h.str();
 }

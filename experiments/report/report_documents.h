@@ -1,5 +1,8 @@
-// Renders the report content (report_table.h) as report.md (GitHub-flavoured Markdown) and index.html (one
-// self-contained page; figures are linked PNG files next to it).
+// Renders the report content (report_table.h) as report.md (GitHub-flavoured Markdown: the summary, the full
+// table, then a section per configuration) and index.html (one self-contained page; figures are linked PNG
+// files next to it). The HTML page opens on the summary and the overview table, which fit a 1400 px window;
+// below them one anchored section per configuration ("#config-<id>") holds every column of the full table
+// as a two-column table, the notes and the figures.
 #pragma once
 
 #include <filesystem>

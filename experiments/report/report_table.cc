@@ -1,5 +1,6 @@
 #include "experiments/report/report_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -13,22 +14,43 @@ namespace {
 constexpr int kFractionDecimals = 4;
 constexpr int kSecondsDecimals = 2;
 constexpr int kRadiusDecimals = 3;
+constexpr const char* kPending = "pending";
 
-Cell text(const std::string& s) { return {{s, "", false}}; }
+Cell text(const std::string& s) { return {{s, "", false, ""}}; }
+Cell link(const std::string& s, const std::string& href) { return {{s, href, false, ""}}; }
 
 std::string percent(int part, int whole) {
   if (whole <= 0) return "n/a";
   return format_fixed(100.0 * part / whole, 1) + "%";
 }
 
-std::string verdict(const ConfigRow& c) {
-  if (!c.prediction) return "pending";
+enum class Verdict { kPending, kReliable, kNotReliable, kTimedOut };
+
+Verdict verdict_of(const ConfigRow& c) {
+  if (!c.prediction) return Verdict::kPending;
   // A unit whose verifier ran out of its time budget has no verdict (experiments/common/verifier_budget.h).
-  if (c.prediction->failure.rfind(kVerifierTimedOut, 0) == 0) return "verifier timed out";
-  return c.prediction->reliable ? "reliable" : "NOT reliable";
+  if (c.prediction->failure.rfind(kVerifierTimedOut, 0) == 0) return Verdict::kTimedOut;
+  return c.prediction->reliable ? Verdict::kReliable : Verdict::kNotReliable;
 }
 
-std::vector<Cell> table_row(const ConfigSection& s) {
+std::string verdict(const ConfigRow& c) {
+  switch (verdict_of(c)) {
+    case Verdict::kPending:
+      return kPending;
+    case Verdict::kReliable:
+      return "reliable";
+    case Verdict::kNotReliable:
+      return "NOT reliable";
+    case Verdict::kTimedOut:
+      return "verifier timed out";
+  }
+  return kPending;
+}
+
+// The metrics of a configuration that is done, else nullptr.
+const MetricsRow* done_metrics(const ConfigRow& c) { return c.done() && c.metrics ? &*c.metrics : nullptr; }
+
+std::vector<Cell> full_row(const ConfigSection& s) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
   row.push_back(text(std::to_string(c.config_id)));
@@ -36,67 +58,166 @@ std::vector<Cell> table_row(const ConfigSection& s) {
   row.push_back(text(c.strategy));
   row.push_back(text(c.params.empty() ? "-" : json_text(c.params)));
   row.push_back(text(verdict(c)));
-  row.push_back(text(c.done() ? "done" : "pending"));
+  row.push_back(text(c.done() ? "done" : kPending));
   row.push_back(text(std::to_string(c.seed)));
-  if (c.done() && c.metrics) {
-    const MetricsRow& m = *c.metrics;
-    row.push_back(text(std::to_string(m.rollouts)));
-    row.push_back(text(std::to_string(m.successes) + " (" + percent(m.successes, m.rollouts) + ")"));
-    row.push_back(text(std::to_string(m.unstable)));
-    row.push_back(text(std::to_string(m.ends)));
-    row.push_back(text(std::to_string(m.outside)));
-    row.push_back(text(format_fixed(m.soundness, kFractionDecimals)));
-    row.push_back(text(format_fixed(m.coverage, kFractionDecimals) + " (r " +
-                       format_fixed(m.coverage_radius, kRadiusDecimals) + ")"));
-    row.push_back(text(m.soundness_bug ? "BUG" : "no"));
-    const std::string replay = counterexample_command(m.counterexample);
-    row.push_back(replay.empty() ? text("-") : Cell{{replay, "", true}});
-    row.push_back(text(format_fixed(m.verify_seconds, kSecondsDecimals)));
-    row.push_back(text(format_fixed(m.rollout_seconds, kSecondsDecimals)));
+  if (const MetricsRow* m = done_metrics(c)) {
+    row.push_back(text(std::to_string(m->rollouts)));
+    row.push_back(text(std::to_string(m->successes) + " (" + percent(m->successes, m->rollouts) + ")"));
+    row.push_back(text(std::to_string(m->unstable)));
+    row.push_back(text(std::to_string(m->ends)));
+    row.push_back(text(std::to_string(m->outside)));
+    row.push_back(text(format_fixed(m->soundness, kFractionDecimals)));
+    row.push_back(text(format_fixed(m->coverage, kFractionDecimals) + " (r " +
+                       format_fixed(m->coverage_radius, kRadiusDecimals) + ")"));
+    row.push_back(text(m->soundness_bug ? "BUG" : "no"));
+    const std::string replay = counterexample_command(m->counterexample);
+    row.push_back(replay.empty() ? text("-") : Cell{{replay, "", true, ""}});
+    row.push_back(text(format_fixed(m->verify_seconds, kSecondsDecimals)));
+    row.push_back(text(format_fixed(m->rollout_seconds, kSecondsDecimals)));
   } else {
-    row.push_back(text(std::to_string(c.n)));                    // requested
-    for (int i = 0; i < 8; ++i) row.push_back(text("pending"));  // successes .. counterexample
+    row.push_back(text(std::to_string(c.n)));                   // requested
+    for (int i = 0; i < 8; ++i) row.push_back(text(kPending));  // successes .. counterexample
     row.push_back(
-        text(c.prediction ? format_fixed(c.prediction->verify_seconds, kSecondsDecimals) : "pending"));
-    row.push_back(text("pending"));
+        text(c.prediction ? format_fixed(c.prediction->verify_seconds, kSecondsDecimals) : kPending));
+    row.push_back(text(kPending));
   }
   Cell figures;
-  for (const FigureRef& f : s.figures) figures.push_back({f.caption, f.file, false});
+  for (const FigureRef& f : s.figures) figures.push_back({f.caption, f.file, false, ""});
   row.push_back(figures.empty() ? text("-") : figures);
   return row;
 }
 
-std::string summary(const std::vector<ConfigSection>& sections) {
-  int done = 0, pending = 0, predicted = 0, reliable = 0, bugs = 0, rollouts = 0, ends = 0, outside = 0;
-  double soundness_sum = 0;
-  int soundness_count = 0;
-  for (const ConfigSection& s : sections) {
-    const ConfigRow& c = *s.row;
-    if (c.prediction) {
-      ++predicted;
-      reliable += c.prediction->reliable;
-    }
-    if (!c.done() || !c.metrics) {
-      ++pending;
-      continue;
-    }
-    ++done;
-    const MetricsRow& m = *c.metrics;
-    bugs += m.soundness_bug;
-    rollouts += m.rollouts;
-    ends += m.ends;
-    outside += m.outside;
-    if (std::isfinite(m.soundness)) {
-      soundness_sum += m.soundness;
-      ++soundness_count;
-    }
+std::string overview_verdict(const ConfigRow& c) {
+  return is_false_alarm(c) ? verdict(c) + " (no failure found)" : verdict(c);
+}
+
+std::string overview_soundness(const MetricsRow& m) {
+  const std::string value = format_fixed(m.soundness, kFractionDecimals);
+  return m.soundness_bug ? value + ", BUG" : value;
+}
+
+// "#config-<id>", a link to the configuration's section. Built with += only: GCC 12 reports a false
+// -Wrestrict on "literal" + std::string, its bug 105329.
+std::string section_link(const ConfigRow& c) {
+  std::string href = "#";
+  href += section_anchor(c);
+  return href;
+}
+
+// The configuration's first figure (a C-space view), small, linked to the full-size PNG.
+Cell thumbnail(const ConfigSection& s) {
+  if (s.figures.empty()) return text("-");
+  const FigureRef& f = s.figures.front();
+  return {{f.caption, f.file, false, f.file}};
+}
+
+Cell links(const ConfigSection& s) {
+  Cell cell = link("details", section_link(*s.row));
+  if (!s.view_page.empty()) cell.push_back({"3-D view", s.view_page, false, ""});
+  return cell;
+}
+
+std::vector<Cell> overview_row(const ConfigSection& s) {
+  const ConfigRow& c = *s.row;
+  std::vector<Cell> row;
+  row.push_back(link(std::to_string(c.config_id), section_link(c)));
+  row.push_back(text(s.label));
+  row.push_back(text(overview_verdict(c)));
+  if (const MetricsRow* m = done_metrics(c)) {
+    row.push_back(text(std::to_string(m->successes) + "/" + std::to_string(m->rollouts)));
+    row.push_back(text(overview_soundness(*m)));
+    row.push_back(text(format_fixed(m->coverage, kFractionDecimals)));
+  } else {
+    for (int i = 0; i < 3; ++i) row.push_back(text(kPending));
   }
-  return std::to_string(sections.size()) + " configurations (" + std::to_string(done) + " done, " +
-         std::to_string(pending) + " pending); " + std::to_string(reliable) + " of " +
-         std::to_string(predicted) + " predicted reliable; " + std::to_string(bugs) + " soundness bugs; " +
-         std::to_string(rollouts) + " rollouts, " + std::to_string(outside) + " of " + std::to_string(ends) +
-         " motion ends outside the prediction; mean soundness " +
-         (soundness_count ? format_fixed(soundness_sum / soundness_count, kFractionDecimals) : "n/a") + ".";
+  row.push_back(thumbnail(s));
+  row.push_back(links(s));
+  return row;
+}
+
+Table overview_table(const std::vector<ConfigSection>& sections) {
+  Table t;
+  t.headers = {"config",    "configuration", "verdict", "rollouts ok/all",
+               "soundness", "coverage",      "figure",  "links"};
+  // The thumbnails are 120 px wide; the label takes what the fixed columns leave.
+  t.widths = {"4.5em", "", "9em", "6em", "6.5em", "5.5em", "136px", "6em"};
+  for (const ConfigSection& s : sections) t.rows.push_back(overview_row(s));
+  return t;
+}
+
+Table full_table(const std::vector<ConfigSection>& sections) {
+  Table t;
+  t.headers = {"config",        "task",
+               "strategy",      "params",
+               "verdict",       "status",
+               "seed",          "N",
+               "successes",     "unstable",
+               "ends",          "outside",
+               "soundness",     "coverage (radius)",
+               "soundness bug", "counterexample replay",
+               "verify s",      "rollout s",
+               "figures"};
+  for (const ConfigSection& s : sections) t.rows.push_back(full_row(s));
+  return t;
+}
+
+// Minimum and mean of the finite values added.
+class MinMean {
+ public:
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    min_ = count_ ? std::min(min_, v) : v;
+    sum_ += v;
+    ++count_;
+  }
+  double min() const { return count_ ? min_ : SummaryStats::kNoValue; }
+  double mean() const { return count_ ? sum_ / count_ : SummaryStats::kNoValue; }
+
+ private:
+  double min_ = 0, sum_ = 0;
+  int count_ = 0;
+};
+
+void count_verdict(const ConfigRow& c, SummaryStats& s) {
+  switch (verdict_of(c)) {
+    case Verdict::kPending:
+      ++s.no_verdict;
+      break;
+    case Verdict::kReliable:
+      ++s.reliable;
+      break;
+    case Verdict::kNotReliable:
+      ++s.not_reliable;
+      break;
+    case Verdict::kTimedOut:
+      ++s.timed_out;
+      break;
+  }
+  if (c.prediction && std::isfinite(c.prediction->verify_seconds))
+    s.verify_seconds += c.prediction->verify_seconds;
+}
+
+void count_metrics(const MetricsRow& m, SummaryStats& s) {
+  s.rollouts += m.rollouts;
+  s.successes += m.successes;
+  s.unstable += m.unstable;
+  s.ends += m.ends;
+  s.outside += m.outside;
+  s.soundness_bugs += m.soundness_bug;
+  if (std::isfinite(m.rollout_seconds)) s.rollout_seconds += m.rollout_seconds;
+}
+
+// "1 soundness bug", "2 soundness bugs".
+std::string count_of(int n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+std::string verdicts_text(const SummaryStats& s) {
+  std::string out =
+      std::to_string(s.reliable) + " reliable, " + std::to_string(s.not_reliable) + " NOT reliable";
+  if (s.timed_out) out += ", " + std::to_string(s.timed_out) + " verifier timed out";
+  if (s.no_verdict) out += ", " + std::to_string(s.no_verdict) + " without a verdict yet";
+  return out;
 }
 
 }  // namespace
@@ -124,24 +245,67 @@ std::string counterexample_command(const nlohmann::json& counterexample) {
   return json_text(counterexample);
 }
 
+std::string section_anchor(const ConfigRow& row) { return "config-" + std::to_string(row.config_id); }
+
+bool is_false_alarm(const ConfigRow& row) {
+  const MetricsRow* m = done_metrics(row);
+  return verdict_of(row) == Verdict::kNotReliable && m && m->rollouts > 0 && m->successes == m->rollouts &&
+         m->counterexample.is_null();
+}
+
+SummaryStats summarize(const std::vector<ConfigSection>& sections) {
+  SummaryStats s;
+  MinMean soundness, coverage;
+  for (const ConfigSection& section : sections) {
+    const ConfigRow& c = *section.row;
+    ++s.configs;
+    ++(c.done() ? s.done : s.pending);
+    count_verdict(c, s);
+    s.false_alarms += is_false_alarm(c);
+    if (const MetricsRow* m = done_metrics(c)) {
+      count_metrics(*m, s);
+      soundness.add(m->soundness);
+      coverage.add(m->coverage);
+    }
+  }
+  s.min_soundness = soundness.min();
+  s.mean_soundness = soundness.mean();
+  s.min_coverage = coverage.min();
+  s.mean_coverage = coverage.mean();
+  return s;
+}
+
+std::vector<SummaryLine> summary_lines(const SummaryStats& s) {
+  const auto fraction = [](double v) { return format_fixed(v, kFractionDecimals); };
+  const auto seconds = [](double v) { return format_fixed(v, kSecondsDecimals) + " s"; };
+  return {
+      {"units", count_of(s.configs, "configuration") + ": " + std::to_string(s.done) + " done, " +
+                    std::to_string(s.pending) + " pending"},
+      {"verdicts", verdicts_text(s)},
+      {"rollouts", std::to_string(s.successes) + " of " + std::to_string(s.rollouts) + " succeeded, " +
+                       std::to_string(s.unstable) + " unstable; " + std::to_string(s.outside) + " of " +
+                       std::to_string(s.ends) + " motion ends outside the prediction"},
+      {"soundness", "min " + fraction(s.min_soundness) + ", mean " + fraction(s.mean_soundness) + "; " +
+                        count_of(s.soundness_bugs, "soundness bug") +
+                        " (verified reliable, a rollout failed)"},
+      {"coverage", "min " + fraction(s.min_coverage) + ", mean " + fraction(s.mean_coverage)},
+      {"false alarms", std::to_string(s.false_alarms) +
+                           " (verified NOT reliable, every rollout succeeded, no counterexample found)"},
+      {"time",
+       "verify " + seconds(s.verify_seconds) + ", rollouts " + seconds(s.rollout_seconds) + " (totals)"},
+  };
+}
+
 ReportContent build_report_content(const ResultsDb& db, std::vector<ConfigSection> sections) {
   ReportContent out;
   out.database = db.path.string();
   for (const RunRow& r : db.runs)
     out.runs.push_back("run " + std::to_string(r.run_id) + ": " + (r.spec_path.empty() ? "-" : r.spec_path) +
                        (r.created.empty() ? "" : ", created " + r.created));
-  out.table.headers = {"config",        "task",
-                       "strategy",      "params",
-                       "verdict",       "status",
-                       "seed",          "N",
-                       "successes",     "unstable",
-                       "ends",          "outside",
-                       "soundness",     "coverage (radius)",
-                       "soundness bug", "counterexample replay",
-                       "verify s",      "rollout s",
-                       "figures"};
-  for (const ConfigSection& s : sections) out.table.rows.push_back(table_row(s));
-  out.summary = summary(sections);
+  out.stats = summarize(sections);
+  out.summary = summary_lines(out.stats);
+  out.overview = overview_table(sections);
+  out.table = full_table(sections);
   out.sections = std::move(sections);
   return out;
 }

@@ -1,8 +1,10 @@
-// The report's content independent of its format: the per-configuration table (verdict vs physics), the
-// summary line and per-configuration sections with their figures. report_documents.h renders it as Markdown
-// and HTML.
+// The report's content independent of its format: a summary block (units, verdicts, soundness, coverage,
+// false alarms, times), an overview table with the key columns and a thumbnail per configuration, the full
+// table of every column (verdict vs physics), and per-configuration sections with their notes and figures.
+// report_documents.h renders it as Markdown and HTML.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -10,17 +12,20 @@
 
 namespace cmt::report {
 
-// A piece of a table cell or paragraph: plain text, a link, or code (a command line).
+// A piece of a table cell or paragraph: plain text, a link, code (a command line) or an image.
 struct Span {
-  std::string text;
+  std::string text;  // the alt text of an image
   std::string href;  // non-empty: a link
   bool code = false;
+  std::string image;  // non-empty: an image (a thumbnail) shown small, linked to href when that is set
 };
 using Cell = std::vector<Span>;  // spans are separated by a space
 
 struct Table {
   std::vector<std::string> headers;
   std::vector<std::vector<Cell>> rows;
+  // HTML only: a CSS width per column ("" or missing: the column shares what the others leave).
+  std::vector<std::string> widths;
 };
 
 struct FigureRef {
@@ -31,16 +36,43 @@ struct FigureRef {
 // One configuration as the report shows it.
 struct ConfigSection {
   const ConfigRow* row = nullptr;
-  std::string label;  // "cube / stick {"friction":0.3}"
-  std::vector<FigureRef> figures;
+  std::string label;               // "cube / stick {"friction":0.3}"
+  std::vector<FigureRef> figures;  // the C-space views first, then the stick-fraction figure
   std::vector<std::string> notes;  // e.g. "pending: no rollouts yet", the verifier's failure
+  std::string
+      view_page;  // the configuration's 3-D page (experiments/view), relative to the report; "" if none
+};
+
+// The numbers of the summary block. Metrics count over the done configurations; real values are NaN when
+// no configuration has one.
+struct SummaryStats {
+  static constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+  int configs = 0, done = 0, pending = 0;
+  // Verdicts: a configuration without a prediction has none yet; a verifier out of its time budget gives
+  // none.
+  int reliable = 0, not_reliable = 0, timed_out = 0, no_verdict = 0;
+  int rollouts = 0, successes = 0, unstable = 0, ends = 0, outside = 0;
+  double min_soundness = kNoValue, mean_soundness = kNoValue;
+  int soundness_bugs = 0;
+  double min_coverage = kNoValue, mean_coverage = kNoValue;
+  // Verified NOT reliable, at least one rollout and every rollout succeeded, and no counterexample recorded.
+  int false_alarms = 0;
+  double verify_seconds = 0;   // sum over the configurations with a prediction
+  double rollout_seconds = 0;  // sum over the done configurations
+};
+
+struct SummaryLine {
+  std::string label;  // "units", "verdicts", ...
+  std::string text;
 };
 
 struct ReportContent {
   std::string database;           // path as given
   std::vector<std::string> runs;  // one line per sweep run
-  std::string summary;
-  Table table;
+  SummaryStats stats;
+  std::vector<SummaryLine> summary;  // the stats in words
+  Table overview;                    // the first page: key columns, a thumbnail and links per configuration
+  Table table;                       // every column, one row per configuration
   std::vector<ConfigSection> sections;
 };
 
@@ -50,8 +82,15 @@ std::string config_label(const ConfigRow& row);
 std::string format_fixed(double value, int decimals);
 // The replay command of a counterexample JSON ("replay"), its compact JSON when it has none, "" for null.
 std::string counterexample_command(const nlohmann::json& counterexample);
+// The HTML id of a configuration's section: "config-<id>".
+std::string section_anchor(const ConfigRow& row);
+// See SummaryStats::false_alarms.
+bool is_false_alarm(const ConfigRow& row);
 
-// Builds the table (one row per section, in order) and the summary line from the sections.
+SummaryStats summarize(const std::vector<ConfigSection>& sections);
+std::vector<SummaryLine> summary_lines(const SummaryStats& stats);
+
+// Builds the summary, the overview and the full table (one row per section, in order) from the sections.
 ReportContent build_report_content(const ResultsDb& db, std::vector<ConfigSection> sections);
 
 }  // namespace cmt::report

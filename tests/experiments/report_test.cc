@@ -2,7 +2,10 @@
 // `cmt sweep` writes it), the report is made with the built program, and its documents and figures are
 // checked: every PNG linked from both documents, decodable at the figure size, and showing the known data
 // where figures.json's axes put it (the predicted polygon's shading, the red cross of the outside end, the
-// stick fraction dots and class bands). Bad databases exit with status 2 naming the file.
+// stick fraction markers and class bands). The first page of index.html is checked for its summary numbers
+// (hand-computed from the rows inserted here), an overview table of at most 8 columns with a thumbnail per
+// configuration, and every configuration's details one click away; the stick-fraction binning is checked on
+// hand-made records. Bad databases exit with status 2 naming the file.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -17,6 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "experiments/report/report_documents.h"
+#include "experiments/report/report_table.h"
+#include "experiments/report/results_db.h"
+#include "experiments/report/sticking_figure.h"
 #include "tests/experiments/cmt_runner.h"
 
 namespace {
@@ -99,7 +106,8 @@ const double kPhi = std::atan(0.25);
 
 json sticking_json() {
   json records = json::array();
-  // alpha/phi in bin [0.50, 0.55): must stick, all stuck; bin [1.50, 1.55): never, none stuck.
+  // alpha/phi 0.52 .. 1.52 gives bins 0.1 wide (sticking_figure.h): in bin [0.5, 0.6) must stick, all
+  // stuck; in bin [1.5, 1.6) never, none stuck.
   for (int i = 0; i < 4; ++i)
     records.push_back({{"atom", 5},
                        {"kind", "face"},
@@ -116,11 +124,11 @@ json sticking_json() {
                        {"phi", kPhi},
                        {"stuck", false},
                        {"speed", 0.9}});
-  // A vertex record and one without a usable angle (NaN is stored as null).
+  // A vertex record (bin [0.9, 1.0)) and one without a usable angle (NaN is stored as null).
   records.push_back({{"atom", 20},
                      {"kind", "vertex"},
                      {"class", "may"},
-                     {"command_angle", 0.9 * kPhi},
+                     {"command_angle", 0.93 * kPhi},
                      {"phi", kPhi},
                      {"stuck", true},
                      {"speed", 0.0}});
@@ -141,6 +149,11 @@ json sticking_json() {
 // Config 1: cube/stick, done, reliable, 5 ends inside and 1 outside, a sticking check.
 // Config 2: two_blocks/slide, pending: nothing but the config row.
 // Config 3: cube/stick with a friction override, done, unreliable with empty sets, no rollouts, NULL metrics.
+// Config 4: cube/stick at friction 0.2, done, unreliable, 4 of 4 rollouts succeeded, no counterexample: a
+// false alarm. Config 5: cube/stick at friction 0.4, done, reliable, 2 of 3 rollouts succeeded: a soundness
+// bug with its counterexample's replay command.
+const char* const kReplay5 = "cmt rollout models/tasks/cube.yaml --strategy stick -n 1 --seed 77";
+
 void write_results_db(const fs::path& path) {
   Db db(path);
   db.exec(kSchema);
@@ -152,6 +165,10 @@ void write_results_db(const fs::path& path) {
   db.insert(config, {2, "u2", "two_blocks", cmt::test::task("two_blocks"), two_blocks, "slide", "{}", 100,
                      "pending", nullptr});
   db.insert(config, {3, "u3", "cube", cmt::test::task("cube"), cube, "stick", R"({"friction":0.5})", 0,
+                     "done", "2024-05-01"});
+  db.insert(config, {4, "u4", "cube", cmt::test::task("cube"), cube, "stick", R"({"friction":0.2})", 4,
+                     "done", "2024-05-01"});
+  db.insert(config, {5, "u5", "cube", cmt::test::task("cube"), cube, "stick", R"({"friction":0.4})", 3,
                      "done", "2024-05-01"});
 
   const json square = {
@@ -168,6 +185,8 @@ void write_results_db(const fs::path& path) {
                         {"steps", {{{"motion", "p1"}, {"termination", json::array()}}}},
                         {"outside_goal", json::array()}};
   db.insert("INSERT INTO predictions VALUES (3, 0, 'p1 may not terminate', 0.2, ?)", {verify3.dump()});
+  db.insert("INSERT INTO predictions VALUES (4, 0, 'p1 may not terminate', 0.3, NULL)", {});
+  db.insert("INSERT INTO predictions VALUES (5, 1, '', 0.4, NULL)", {});
 
   const std::string rollout =
       "INSERT INTO rollouts VALUES (1, ?, 0, 0, -1, 1, ?, ?, ?, 0, 'stuck', ?, ?, ?, 0)";
@@ -179,6 +198,10 @@ void write_results_db(const fs::path& path) {
       "INSERT INTO metrics VALUES (?, ?, ?, 0, ?, ?, ?, ?, 0.25, 0.01, 0, ?, ?, ?, ?)";
   db.insert(metrics, {1, 6, 5, 6, 1, 5.0 / 6.0, 0.4, nullptr, sticking_json().dump(), 3.5, 0.1});
   db.insert(metrics, {3, 0, 0, 0, 0, nullptr, nullptr, nullptr, nullptr, 0.0, 0.2});
+  db.insert(metrics, {4, 4, 4, 4, 0, 1.0, 0.6, nullptr, nullptr, 0.4, 0.3});
+  const json counterexample5 = {{"rollout", 2}, {"replay", kReplay5}};
+  db.insert(metrics, {5, 3, 2, 10, 1, 0.9, 0.2, counterexample5.dump(), nullptr, 0.2, 0.4});
+  db.exec("UPDATE metrics SET soundness_bug = 1 WHERE config_id = 5");
 }
 
 struct Report {
@@ -282,8 +305,9 @@ TEST(Report, WritesDocumentsReferencingEveryFigure) {
   std::set<std::string> pngs;
   for (const auto& e : fs::directory_iterator(r.dir / "figures"))
     if (e.path().extension() == ".png") pngs.insert("figures/" + e.path().filename().string());
-  // Config 1: three views + sticking; config 2 (pending): three views of the C-space; config 3: three views.
-  EXPECT_EQ(pngs.size(), 10u);
+  // Config 1: three views + sticking; config 2 (pending): three views of the C-space; configs 3, 4 and 5:
+  // three views each.
+  EXPECT_EQ(pngs.size(), 16u);
   EXPECT_EQ(r.figures["figures"].size(), pngs.size());
   for (const std::string& png : pngs) {
     EXPECT_NE(r.markdown.find("(" + png + ")"), std::string::npos) << png;
@@ -353,21 +377,51 @@ TEST(Report, TopViewShowsThePredictionAndTheOutsideEnd) {
   EXPECT_EQ(front["y"]["label"], "z (in)");
 }
 
-TEST(Report, StickingFigureShowsFractionsAndClassBands) {
+// Pixels darker than light gray in a box of half-size `half` px around `center` (text drawn there).
+int dark_pixels(const cv::Mat& img, const cv::Point& center, int half) {
+  int dark = 0;
+  for (int dy = -half; dy <= half; ++dy)
+    for (int dx = -half; dx <= half; ++dx) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(center + cv::Point(dx, dy));
+      dark += p[0] < 120 && p[1] < 120 && p[2] < 120;
+    }
+  return dark;
+}
+
+TEST(Report, StickingFigureShowsBinnedMarkersCountsAndClassBands) {
   const Report r = make_report("sticking");
   ASSERT_EQ(r.status, 0);
   const json& f = figure(r, 1, "sticking");
   const cv::Mat img = load(r, f);
   ASSERT_FALSE(img.empty());
   const cv::Vec3b face = legend_color(f, "observed, faces");
-  // Bin [0.50, 0.55): all 4 stuck -> a dot at fraction 1; bin [1.50, 1.55): none -> a dot at 0.
-  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 0.525, 1.0)), face);
-  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 1.525, 0.0)), face);
+  const cv::Vec3b vertex = legend_color(f, "observed, vertices");
+  EXPECT_NE(face, vertex);
+  // Bins 0.1 wide: [0.5, 0.6) all 4 stuck -> a face marker at (0.55, 1); [1.5, 1.6) none -> at (1.55, 0);
+  // the vertex record in [0.9, 1.0), stuck -> a vertex marker at (0.95, 1).
+  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 0.55, 1.0)), face);
+  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 1.55, 0.0)), face);
+  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 0.95, 1.0)), vertex);
+  // Markers, not lines: halfway between the two face markers there is no face color.
+  EXPECT_NE(img.at<cv::Vec3b>(to_pixel(f, 1.05, 0.5)), face);
+  // The count (4) is written right of a face marker; right of an empty bin's centre nothing is.
+  const cv::Point right(14, 0);
+  EXPECT_GT(dark_pixels(img, to_pixel(f, 0.55, 1.0) + right, 5), 5);
+  EXPECT_EQ(dark_pixels(img, to_pixel(f, 1.25, 1.0) + right, 5), 0);
   // Behind them the predicted classes of those bins: must, never; a bin without trials has no band.
-  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 0.525, 0.5)), legend_color(f, "predicted must"));
-  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 1.525, 0.5)), legend_color(f, "predicted never"));
-  EXPECT_NE(img.at<cv::Vec3b>(to_pixel(f, 1.225, 0.5)), legend_color(f, "predicted never"));
-  EXPECT_NE(img.at<cv::Vec3b>(to_pixel(f, 1.225, 0.5)), legend_color(f, "predicted must"));
+  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 0.55, 0.5)), legend_color(f, "predicted must"));
+  EXPECT_EQ(img.at<cv::Vec3b>(to_pixel(f, 1.55, 0.5)), legend_color(f, "predicted never"));
+  EXPECT_NE(img.at<cv::Vec3b>(to_pixel(f, 1.25, 0.5)), legend_color(f, "predicted never"));
+  EXPECT_NE(img.at<cv::Vec3b>(to_pixel(f, 1.25, 0.5)), legend_color(f, "predicted must"));
+  // The legend explains the markers and the numbers.
+  std::set<std::string> markers;
+  bool explains_counts = false;
+  for (const json& e : f["legend"]) {
+    markers.insert(e["marker"].get<std::string>());
+    explains_counts = explains_counts || e["label"] == "numbers: trials per bin";
+  }
+  EXPECT_TRUE(markers.count("dot") && markers.count("diamond")) << f["legend"].dump();
+  EXPECT_TRUE(explains_counts) << f["legend"].dump();
 }
 
 TEST(Report, TableHasTheMetricsAndPendingAndMissingValues) {
@@ -401,8 +455,331 @@ TEST(Report, TableHasTheMetricsAndPendingAndMissingValues) {
   EXPECT_NE(r.markdown.find("the predicted termination sets are empty"), std::string::npos);
   EXPECT_NE(r.markdown.find("verifier: p1 may not terminate"), std::string::npos);
 
-  EXPECT_NE(r.markdown.find("3 configurations (2 done, 1 pending)"), std::string::npos);
+  EXPECT_NE(r.markdown.find("- **units:** 5 configurations: 4 done, 1 pending"), std::string::npos);
   EXPECT_NE(r.html.find("0.8333"), std::string::npos);
+}
+
+// The text between the first `open` at or after `from` and the next `close`; "" when either is missing.
+std::string between(const std::string& s, const std::string& open, const std::string& close,
+                    std::size_t from = 0) {
+  const std::size_t a = s.find(open, from);
+  if (a == std::string::npos) return "";
+  const std::size_t b = s.find(close, a + open.size());
+  return b == std::string::npos ? "" : s.substr(a + open.size(), b - a - open.size());
+}
+
+std::size_t occurrences(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + what.size())) ++n;
+  return n;
+}
+
+std::vector<std::string> split(const std::string& s, const std::string& separator) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  for (std::size_t at = s.find(separator); at != std::string::npos; at = s.find(separator, from)) {
+    out.push_back(s.substr(from, at - from));
+    from = at + separator.size();
+  }
+  out.push_back(s.substr(from));
+  return out;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '&')
+      out += "&amp;";
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::string html_section(const std::string& html, int config) {
+  return between(html, "<section class=\"config\" id=\"config-" + std::to_string(config) + "\">",
+                 "</section>");
+}
+
+// The notes of a configuration's Markdown section: its "- " lines.
+std::vector<std::string> markdown_notes(const std::string& markdown, int config) {
+  const std::size_t start = markdown.find("## Config " + std::to_string(config) + ":");
+  if (start == std::string::npos) return {};
+  const std::string section = markdown.substr(start, markdown.find("\n## ", start) - start);
+  std::vector<std::string> notes;
+  for (const std::string& line : split(section, "\n"))
+    if (line.rfind("- ", 0) == 0) notes.push_back(line.substr(2));
+  return notes;
+}
+
+// A section as report.cc starts one: the row and its label (the other members are left empty).
+cmt::report::ConfigSection section_of(const cmt::report::ConfigRow& row, const std::string& label = "") {
+  cmt::report::ConfigSection s;
+  s.row = &row;
+  s.label = label;
+  return s;
+}
+
+// The numbers by hand from the rows write_results_db inserts (configs 1..5, see there).
+TEST(Report, SummaryHasTheHandComputedNumbers) {
+  const fs::path base = fs::path(testing::TempDir()) / "cmt_report_test_summary";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  write_results_db(base / "results.sqlite");
+  const cmt::report::ResultsDb db = cmt::report::read_results_db(base / "results.sqlite");
+  std::vector<cmt::report::ConfigSection> sections;
+  for (const cmt::report::ConfigRow& c : db.configs) sections.push_back(section_of(c, c.task));
+  const cmt::report::SummaryStats s = cmt::report::build_report_content(db, sections).stats;
+  EXPECT_EQ(s.configs, 5);
+  EXPECT_EQ(s.done, 4);
+  EXPECT_EQ(s.pending, 1);       // config 2
+  EXPECT_EQ(s.reliable, 2);      // configs 1, 5
+  EXPECT_EQ(s.not_reliable, 2);  // configs 3, 4
+  EXPECT_EQ(s.no_verdict, 1);    // config 2
+  EXPECT_EQ(s.timed_out, 0);
+  EXPECT_EQ(s.rollouts, 6 + 0 + 4 + 3);                               // 13
+  EXPECT_EQ(s.successes, 5 + 0 + 4 + 2);                              // 11
+  EXPECT_EQ(s.ends, 6 + 0 + 4 + 10);                                  // 20
+  EXPECT_EQ(s.outside, 1 + 0 + 0 + 1);                                // 2
+  EXPECT_EQ(s.soundness_bugs, 1);                                     // config 5
+  EXPECT_EQ(s.false_alarms, 1);                                       // config 4; config 3 has no rollouts
+  EXPECT_NEAR(s.min_soundness, 5.0 / 6.0, 1e-12);                     // config 3's is NULL
+  EXPECT_NEAR(s.mean_soundness, (5.0 / 6.0 + 1.0 + 0.9) / 3, 1e-12);  // 0.9111
+  EXPECT_NEAR(s.min_coverage, 0.2, 1e-12);
+  EXPECT_NEAR(s.mean_coverage, (0.4 + 0.6 + 0.2) / 3, 1e-12);
+  EXPECT_NEAR(s.verify_seconds, 0.1 + 0.2 + 0.3 + 0.4, 1e-12);  // the predictions
+  EXPECT_NEAR(s.rollout_seconds, 3.5 + 0.0 + 0.4 + 0.2, 1e-12);
+
+  // The same numbers in words at the top of both documents.
+  const Report r = make_report("summary");
+  ASSERT_EQ(r.status, 0);
+  const std::vector<std::pair<std::string, std::string>> lines = {
+      {"units", "5 configurations: 4 done, 1 pending"},
+      {"verdicts", "2 reliable, 2 NOT reliable, 1 without a verdict yet"},
+      {"rollouts", "11 of 13 succeeded, 0 unstable; 2 of 20 motion ends outside the prediction"},
+      {"soundness", "min 0.8333, mean 0.9111; 1 soundness bug (verified reliable, a rollout failed)"},
+      {"coverage", "min 0.2000, mean 0.4000"},
+      {"false alarms", "1 (verified NOT reliable, every rollout succeeded, no counterexample found)"},
+      {"time", "verify 1.00 s, rollouts 4.10 s (totals)"}};
+  const std::string html_summary = between(r.html, "<table class=\"summary\">", "</table>");
+  for (const auto& [label, text] : lines) {
+    EXPECT_NE(r.markdown.find("- **" + label + ":** " + text + "\n"), std::string::npos) << label;
+    EXPECT_NE(html_summary.find("<tr><th>" + label + "</th><td>" + text + "</td></tr>"), std::string::npos)
+        << label << "\n"
+        << html_summary;
+  }
+  // Both open on it: before the tables.
+  EXPECT_LT(r.markdown.find("## Summary"), r.markdown.find("## Configurations"));
+  EXPECT_LT(r.html.find("<table class=\"summary\">"), r.html.find("<table class=\"overview\">"));
+}
+
+// A verifier out of its time budget gives no verdict: not a false alarm even when every rollout succeeded.
+TEST(Report, TimedOutVerifierIsNoVerdictAndNoFalseAlarm) {
+  cmt::report::ConfigRow timed_out;
+  timed_out.status = "done";
+  timed_out.prediction = cmt::report::PredictionRow{false, "verifier: timed out after 180 s", 180.0, nullptr};
+  timed_out.metrics = cmt::report::MetricsRow{};
+  timed_out.metrics->rollouts = timed_out.metrics->successes = 2;
+  cmt::report::ConfigRow false_alarm = timed_out;
+  false_alarm.config_id = 2;
+  false_alarm.prediction->failure = "v1 may not terminate";
+  const cmt::report::SummaryStats s =
+      cmt::report::summarize({section_of(timed_out), section_of(false_alarm)});
+  EXPECT_EQ(s.timed_out, 1);
+  EXPECT_EQ(s.not_reliable, 1);
+  EXPECT_EQ(s.false_alarms, 1);
+  EXPECT_FALSE(cmt::report::is_false_alarm(timed_out));
+  EXPECT_TRUE(cmt::report::is_false_alarm(false_alarm));
+  false_alarm.metrics->counterexample = {{"replay", "cmt rollout ..."}};  // the search found one
+  EXPECT_FALSE(cmt::report::is_false_alarm(false_alarm));
+}
+
+TEST(Report, OverviewTableIsNarrowWithAThumbnailPerConfiguration) {
+  const Report r = make_report("overview");
+  ASSERT_EQ(r.status, 0);
+  const std::string table = between(r.html, "<table class=\"overview\">", "</table>");
+  ASSERT_FALSE(table.empty()) << r.html;
+  EXPECT_NE(r.html.find("table.overview { table-layout: fixed; width: 100%; }"), std::string::npos);
+  std::vector<std::string> rows = split(table, "<tr>");
+  ASSERT_GE(rows.size(), 2u);
+  const std::size_t columns = occurrences(rows[1], "<th>");
+  EXPECT_GE(columns, 6u);
+  EXPECT_LE(columns, 8u);
+  EXPECT_EQ(occurrences(between(table, "<colgroup>", "</colgroup>"), "<col"), columns);
+  rows.erase(rows.begin(), rows.begin() + 2);  // before the first row, the header row
+  ASSERT_EQ(rows.size(), 5u);                  // one per configuration, in order
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::string id = std::to_string(i + 1);
+    SCOPED_TRACE("config " + id);
+    EXPECT_EQ(rows[i].rfind("<td><a href=\"#config-" + id + "\">" + id + "</a></td>", 0), 0u) << rows[i];
+    EXPECT_EQ(occurrences(rows[i], "<td>"), columns);
+    // The thumbnail: the first C-space view, small, linked to the full figure.
+    const std::string png = "figures/config_" + id + "_front.png";
+    EXPECT_NE(rows[i].find("<a href=\"" + png + "\"><img class=\"thumb\" src=\"" + png + "\""),
+              std::string::npos)
+        << rows[i];
+    EXPECT_NE(rows[i].find("width=\"120\""), std::string::npos);
+    EXPECT_TRUE(fs::exists(r.dir / png)) << png;
+    EXPECT_NE(rows[i].find("<a href=\"#config-" + id + "\">details</a>"), std::string::npos);
+    EXPECT_NE(html_section(r.html, static_cast<int>(i + 1)), "") << "no section to link to";
+  }
+  // Key columns: verdict, rollouts, soundness (with the bug flag), coverage; the false alarm says so.
+  EXPECT_NE(rows[0].find("<td>reliable</td><td>5/6</td><td>0.8333</td><td>0.4000</td>"), std::string::npos)
+      << rows[0];
+  EXPECT_NE(rows[1].find("<td>pending</td><td>pending</td><td>pending</td><td>pending</td>"),
+            std::string::npos)
+      << rows[1];
+  EXPECT_NE(rows[3].find("<td>NOT reliable (no failure found)</td><td>4/4</td>"), std::string::npos)
+      << rows[3];
+  EXPECT_NE(rows[4].find("<td>0.9000, BUG</td>"), std::string::npos) << rows[4];
+  // Replay commands and notes are not on the first page.
+  EXPECT_EQ(table.find(kReplay5), std::string::npos);
+  EXPECT_EQ(table.find("<code>"), std::string::npos);
+}
+
+// Every column of the full table (report.md) and every note are in the configuration's HTML section.
+TEST(Report, DetailsKeepEveryMetricNoteAndFigure) {
+  const Report r = make_report("details");
+  ASSERT_EQ(r.status, 0);
+  for (int config = 1; config <= 5; ++config) {
+    SCOPED_TRACE("config " + std::to_string(config));
+    const std::string section = html_section(r.html, config);
+    ASSERT_FALSE(section.empty());
+    std::vector<std::string> headers;
+    const std::vector<std::string> row = table_row(r.markdown, config, &headers);
+    ASSERT_EQ(row.size(), headers.size());
+    for (std::size_t k = 0; k < headers.size(); ++k) {
+      if (headers[k] == "figures") continue;  // links, checked below as the figures themselves
+      const std::string& md = row[k];
+      const bool code = md.size() > 2 && md.front() == '`' && md.back() == '`';
+      const std::string value =
+          code ? "<code>" + html_escape(md.substr(1, md.size() - 2)) + "</code>" : html_escape(md);
+      EXPECT_NE(section.find("<tr><th>" + html_escape(headers[k]) + "</th><td>" + value + "</td></tr>"),
+                std::string::npos)
+          << headers[k] << " = " << value;
+    }
+    const std::vector<std::string> notes = markdown_notes(r.markdown, config);
+    EXPECT_FALSE(notes.empty());
+    for (const std::string& note : notes)
+      EXPECT_NE(section.find("<li>" + html_escape(note) + "</li>"), std::string::npos) << note;
+    for (const json& f : r.figures["figures"]) {
+      if (f["config_id"] != config) continue;
+      EXPECT_NE(section.find("<img src=\"" + f["file"].get<std::string>() + "\""), std::string::npos)
+          << f["file"];
+    }
+  }
+  // The counterexample's replay command, in the table and in the notes of config 5.
+  const std::string section5 = html_section(r.html, 5);
+  EXPECT_NE(section5.find("<td><code>" + html_escape(kReplay5) + "</code></td>"), std::string::npos);
+  EXPECT_NE(section5.find("<li>counterexample, replay with: " + html_escape(kReplay5) + "</li>"),
+            std::string::npos);
+  EXPECT_NE(section5.find("SOUNDNESS BUG"), std::string::npos);
+  EXPECT_NE(html_section(r.html, 3).find("<li>verifier: p1 may not terminate</li>"), std::string::npos);
+  EXPECT_NE(html_section(r.html, 1).find("<li>sticking check: 10 trials, 0 disagreements</li>"),
+            std::string::npos);
+  // The sweep runs are one click away too.
+  EXPECT_NE(r.html.find("<details><summary>1 sweep run</summary>"), std::string::npos);
+  EXPECT_NE(r.html.find("run 1: sweep.yaml, created 2024-05-01T12:00:00Z"), std::string::npos);
+}
+
+TEST(Report, ViewPageIsLinkedFromTheRowAndTheSection) {
+  cmt::report::ResultsDb db;
+  db.path = "results.sqlite";
+  cmt::report::ConfigRow with_view, without_view;
+  with_view.config_id = 7;
+  without_view.config_id = 8;
+  for (cmt::report::ConfigRow* c : {&with_view, &without_view}) {
+    c->task = "cube";
+    c->strategy = "stick";
+    c->params = json::object();
+    c->status = "pending";
+    c->unit_key = "u" + std::to_string(c->config_id);
+  }
+  cmt::report::ConfigSection viewed = section_of(with_view, "cube / stick");
+  viewed.figures = {{"figures/config_7_front.png", "front view"}};
+  viewed.view_page = "views/config_7.html";
+  const cmt::report::ReportContent content =
+      cmt::report::build_report_content(db, {viewed, section_of(without_view, "cube / stick")});
+  const std::string html = cmt::report::render_html(content);
+  const std::string link = "<a href=\"views/config_7.html\">3-D view</a>";
+  const std::string table = between(html, "<table class=\"overview\">", "</table>");
+  EXPECT_EQ(occurrences(table, link), 1u) << table;
+  EXPECT_EQ(occurrences(html_section(html, 7), link), 1u);
+  EXPECT_EQ(occurrences(html, "3-D view"), 2u);  // config 8 has none
+  EXPECT_EQ(occurrences(html_section(html, 8), "3-D view"), 0u);
+
+  const std::string markdown = cmt::report::render_markdown(content);
+  const std::string section7 = between(markdown, "## Config 7:", "## Config 8:");
+  EXPECT_NE(section7.find("[3-D view](views/config_7.html)"), std::string::npos) << markdown;
+  EXPECT_EQ(occurrences(markdown, "3-D view"), 1u);
+}
+
+// Hand-made records at phi = 0.5: alpha/phi from 0.12 to 1.17 (span 1.05) gives bins 0.1 wide (0.05 would
+// need 22 bins from 0.10 to 1.15, more than 15), from 0.1: 11 bins.
+TEST(Report, StickingRecordsAreBinnedPerKind) {
+  auto record = [](const char* kind, const char* cls, json angle, double phi, bool stuck) {
+    json r = {{"atom", 1}, {"class", cls}, {"command_angle", angle}, {"phi", phi}, {"stuck", stuck}};
+    if (kind) r["kind"] = kind;
+    return r;
+  };
+  const json sticking = {{"records",
+                          {record("vertex", "may", 0.305, 0.5, true),   // 0.61
+                           record("face", "must", 0.06, 0.5, true),     // 0.12
+                           record("face", "must", 0.09, 0.5, true),     // 0.18
+                           record("face", "may", 0.165, 0.5, false),    // 0.33
+                           record("edge", "may", 0.18, 0.5, true),      // 0.36
+                           record("edge", "never", 0.475, 0.5, false),  // 0.95
+                           record("face", "never", 0.585, 0.5, false),  // 1.17
+                           record("face", "must", nullptr, 0.5, true),  // no angle
+                           record("edge", "must", 0.1, 0.0, true),      // no friction angle
+                           record(nullptr, "must", 0.1, 0.5, true)}}};  // no kind
+  const cmt::report::StickBinning b = cmt::report::bin_sticking_records(sticking);
+  EXPECT_NEAR(b.width, 0.1, 1e-12);
+  EXPECT_NEAR(b.origin, 0.1, 1e-12);
+  EXPECT_EQ(b.count, 11);
+  EXPECT_EQ(b.skipped, 3);
+  EXPECT_EQ(b.kinds, (std::vector<std::string>{"face", "edge", "vertex"}));
+  struct Expected {
+    std::string kind;
+    int index, trials, stuck;
+    std::array<int, 3> classes;
+  };
+  const std::vector<Expected> expected = {{"face", 0, 2, 2, {2, 0, 0}},  {"face", 2, 1, 0, {0, 1, 0}},
+                                          {"face", 10, 1, 0, {0, 0, 1}}, {"edge", 2, 1, 1, {0, 1, 0}},
+                                          {"edge", 8, 1, 0, {0, 0, 1}},  {"vertex", 5, 1, 1, {0, 1, 0}}};
+  ASSERT_EQ(b.bins.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE(i);
+    const cmt::report::StickBin& bin = b.bins[i];
+    EXPECT_EQ(bin.kind, expected[i].kind);
+    EXPECT_EQ(bin.index, expected[i].index);
+    EXPECT_EQ(bin.trials, expected[i].trials);
+    EXPECT_EQ(bin.stuck, expected[i].stuck);
+    EXPECT_EQ(bin.classes, expected[i].classes);
+    EXPECT_NEAR(bin.lo, 0.1 + 0.1 * expected[i].index, 1e-12);
+    EXPECT_NEAR(bin.hi, bin.lo + 0.1, 1e-12);
+  }
+  EXPECT_NEAR(b.bins[0].centre(), 0.15, 1e-12);
+  EXPECT_DOUBLE_EQ(b.bins[0].fraction(), 1.0);
+  EXPECT_DOUBLE_EQ(b.bins[1].fraction(), 0.0);
+
+  EXPECT_TRUE(cmt::report::bin_sticking_records(json::object()).bins.empty());
+  EXPECT_THROW(cmt::report::bin_sticking_records({{"records", 3}}), std::invalid_argument);
+  EXPECT_THROW(cmt::report::bin_sticking_records({{"records", {1, 2}}}), std::invalid_argument);
+}
+
+TEST(Report, StickBinWidthIsANiceStepGivingAtMost15Bins) {
+  using cmt::report::stick_bin_width;
+  EXPECT_NEAR(stick_bin_width(0.52, 1.52), 0.1, 1e-12);  // 0.5 .. 1.5: 11 bins (0.05: 21)
+  EXPECT_NEAR(stick_bin_width(0.0, 3.0), 0.25, 1e-12);   // 13 bins (0.2: 16)
+  EXPECT_NEAR(stick_bin_width(0.0, 0.05), 0.01, 1e-12);  // the minimum width: 6 bins
+  EXPECT_NEAR(stick_bin_width(0.7, 0.7), 0.01, 1e-12);   // one value
 }
 
 // Runs the report on a database with --json and returns the error object.

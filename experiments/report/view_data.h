@@ -1,0 +1,42 @@
+// The data of a 3-D page (docs/viewer.md "Data format"): a task's C-space, start and goal, and optionally a
+// strategy's predicted termination sets, observed motion ends and rollout trajectories, as generic layers (a
+// named set of polygons, segments, points, polylines and spheres with one style). Other tools (teaching,
+// planning) add layers of their own with add_layer.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/report/predicted_sets.h"
+#include "experiments/report/results_db.h"
+#include "models/loaded_task.h"
+
+namespace cmt::report {
+
+// A recorded rollout path (task units), drawn as one polyline per rollout.
+struct ViewTrajectory {
+  int rollout = 0;
+  bool success = false;
+  std::vector<Vec3> points;
+};
+
+struct ViewInput {
+  const LoadedTask* task = nullptr;
+  std::string title;
+  std::vector<std::string> motions;           // the strategy's motion names in order (without a prediction)
+  const PredictedSets* prediction = nullptr;  // null: nothing predicted
+  const std::vector<RolloutRow>* ends = nullptr;  // null: no rollouts
+  std::vector<ViewTrajectory> trajectories;
+};
+
+// One layer: {id, name, group, style: {color, opacity}, visible, polygons, segments, points, polylines,
+// spheres}; every item has `info` (shown when clicked).
+nlohmann::json make_layer(const std::string& id, const std::string& name, const std::string& group,
+                          const std::string& color, double opacity);
+
+// {format: "cmt-view-1", title, units, bounds: {min, max} (the whole C-space), focus: {min, max} (start,
+// goal, prediction, ends, trajectories: where the camera looks first), layers: [...]}.
+nlohmann::json view_data(const ViewInput& input);
+
+}  // namespace cmt::report
