@@ -2,6 +2,9 @@
 
 #include <chrono>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <utility>
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
@@ -65,6 +68,22 @@ nlohmann::json sticking_json(const LoadedTask& lt, const Motion& motion) {
           {"atoms", atoms},
           {"faces", faces},
           {"seconds", seconds}};
+}
+
+report::StickClassOf verifier_stick_classes() {
+  // Keyed by the task's address and the motion: the classes of all atoms are computed once per pair.
+  auto cache =
+      std::make_shared<std::map<std::pair<const LoadedTask*, std::string>, std::map<int, std::string>>>();
+  return [cache](const LoadedTask& task, const std::string& motion, int atom) -> std::string {
+    auto [it, fresh] = cache->try_emplace({&task, motion});
+    const Motion* m = task.task.find_motion(motion);
+    if (fresh && m) {
+      const nlohmann::json classes = sticking_json(task, *m);
+      for (const auto& a : classes["atoms"]) it->second[a["atom"].get<int>()] = a["class"].get<std::string>();
+    }
+    const auto cls = it->second.find(atom);
+    return cls == it->second.end() ? "unknown" : cls->second;
+  };
 }
 
 void add_sticking_command(CLI::App& app, CommandState& state) {

@@ -11,6 +11,7 @@
 #include "controllers/termination.h"
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/cli/sticking_command.h"
 #include "experiments/cli/verify_command.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/results_db.h"
@@ -92,6 +93,7 @@ nlohmann::json run_view(const ViewOptions& o, bool* reliable) {
   if (strategy) input.motions = strategy->motions;
   input.prediction = prediction ? &*prediction : nullptr;
   input.ends = row ? &row->rollouts : nullptr;
+  input.stick_class = verifier_stick_classes();
   if (strategy && o.rollouts > 0) input.trajectories = run_trajectories(task, *strategy, o);
   const nlohmann::json data = report::view_data(input);
   report::write_view_assets(o.out_dir);

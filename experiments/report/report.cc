@@ -48,7 +48,8 @@ void prepare_output(const std::filesystem::path& out_dir) {
 
 class ReportBuilder {
  public:
-  ReportBuilder(const ResultsDb& db, const std::filesystem::path& out_dir) : db_(db), out_dir_(out_dir) {}
+  ReportBuilder(const ResultsDb& db, const std::filesystem::path& out_dir, StickClassOf stick_class)
+      : db_(db), out_dir_(out_dir), stick_class_(std::move(stick_class)) {}
 
   ConfigSection section(const ConfigRow& c) {
     ConfigSection s;
@@ -101,7 +102,8 @@ class ReportBuilder {
     try {
       if (!view_assets_written_) write_view_assets(out_dir_ / kViewDir);
       view_assets_written_ = true;
-      ViewInput input{figure.task, figure.title, figure.motions, figure.prediction, figure.rollouts, {}};
+      ViewInput input{figure.task,     figure.title, figure.motions, figure.prediction,
+                      figure.rollouts, {},           stick_class_};
       const std::string page =
           std::string(kViewDir) + "/" + kFigurePrefix + std::to_string(c.config_id) + ".html";
       write_view_page(view_data(input), out_dir_ / page, ".");
@@ -166,14 +168,16 @@ class ReportBuilder {
   std::map<std::string, std::shared_ptr<const LoadedTask>> tasks_;
   nlohmann::json figures_ = nlohmann::json::array();
   bool view_assets_written_ = false;
+  StickClassOf stick_class_;
 };
 
 }  // namespace
 
-ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir) {
+ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
+                           const StickClassOf& stick_class) {
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
-  ReportBuilder builder(db, out_dir);
+  ReportBuilder builder(db, out_dir, stick_class);
   std::vector<ConfigSection> sections;
   ReportSummary summary;
   for (const ConfigRow& c : db.configs) {

@@ -7,6 +7,8 @@
 
 #include <filesystem>
 
+#include "experiments/report/view_data.h"
+
 namespace cmt::report {
 
 struct ReportSummary {
@@ -16,6 +18,8 @@ struct ReportSummary {
 
 // Throws TaskError (file, key, reason) for a bad database or bad content in it, std::runtime_error when the
 // output cannot be written.
-ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir);
+// `stick_class`: shades the 3-D pages' predicted pieces by their atom's stick class (empty: no shading).
+ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
+                           const StickClassOf& stick_class = {});
 
 }  // namespace cmt::report

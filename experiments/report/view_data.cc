@@ -104,11 +104,17 @@ std::map<int, int> ends_per_atom(const std::vector<RolloutRow>* ends, int step) 
   return out;
 }
 
-json prediction_layer(const PredictedStep& step, int i, const std::vector<RolloutRow>* ends) {
+// Opacity of a predicted piece by its atom's stick class: must-stick atoms solid, may-stick lighter, and the
+// pieces on never-stick atoms (there by the slow-stop rule, sensing or the contact lift) faint.
+double class_opacity(const std::string& stick) {
+  return stick == "must" ? 0.85 : stick == "may" ? 0.5 : 0.22;
+}
+
+json prediction_layer(const ViewInput& in, const PredictedStep& step, int i) {
   json layer = make_layer("predicted-" + std::to_string(i), "predicted ends: " + step.motion,
                           "motion " + std::to_string(i + 1) + ": " + step.motion, motion_color(i), 0.55);
   layer["style"]["offset"] = -1;  // drawn in front of the C-space face it lies on
-  const std::map<int, int> counts = ends_per_atom(ends, i);
+  const std::map<int, int> counts = ends_per_atom(in.ends, i);
   for (const PredictedPiece& p : step.termination) {
     const auto it = counts.find(p.atom);
     json info = {{"atom", p.atom},
@@ -116,18 +122,25 @@ json prediction_layer(const PredictedStep& step, int i, const std::vector<Rollou
                  {"kind", p.kind},
                  {"motion", step.motion},
                  {"ends on this atom", it == counts.end() ? 0 : it->second}};
+    json style = json::object();
+    if (in.stick_class && p.atom >= 0) {
+      const std::string stick = in.stick_class(*in.task, step.motion, p.atom);
+      info["stick"] = stick;
+      style["opacity"] = class_opacity(stick);
+    }
     if (p.kind == "free") {
       info["radius"] = p.radius;
       layer["spheres"].push_back({{"center", point(p.center)}, {"radius", p.radius}, {"info", info}});
     } else if (p.kind == "vertex" || p.polygon.size() == 1) {
-      layer["points"].push_back({{"point", point(p.polygon.at(0))}, {"info", info}});
+      layer["points"].push_back({{"point", point(p.polygon.at(0))}, {"style", style}, {"info", info}});
     } else if (p.kind == "edge" || p.polygon.size() == 2) {
-      layer["segments"].push_back({{"points", points(p.polygon)}, {"info", info}});
+      layer["segments"].push_back({{"points", points(p.polygon)}, {"style", style}, {"info", info}});
     } else {
       json holes = json::array();
       for (const std::vector<Vec3>& h : p.holes) holes.push_back(points(h));
       info["area"] = piece_area(p);
-      layer["polygons"].push_back({{"points", points(p.polygon)}, {"holes", holes}, {"info", info}});
+      layer["polygons"].push_back(
+          {{"points", points(p.polygon)}, {"holes", holes}, {"style", style}, {"info", info}});
     }
   }
   return layer;
@@ -232,7 +245,7 @@ nlohmann::json view_data(const ViewInput& in) {
     motions.clear();
     for (const PredictedStep& s : in.prediction->steps) motions.push_back(s.motion);
     for (int i = 0; i < static_cast<int>(in.prediction->steps.size()); ++i)
-      layers.push_back(prediction_layer(in.prediction->steps[i], i, in.ends));
+      layers.push_back(prediction_layer(in, in.prediction->steps[i], i));
   }
   if (in.ends)
     for (json& l : ends_layers(*in.ends, motions)) layers.push_back(std::move(l));

@@ -4,6 +4,7 @@
 // planning) add layers of their own with add_layer.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,6 +22,11 @@ struct ViewTrajectory {
   std::vector<Vec3> points;
 };
 
+// The stick class ("must", "may" or "never", Buckley §3.3) of an atom under a motion of the task, for the
+// shading of predicted pieces; the caller supplies it (the verifier computes it; this library does not link
+// the verifier).
+using StickClassOf = std::function<std::string(const LoadedTask& task, const std::string& motion, int atom)>;
+
 struct ViewInput {
   const LoadedTask* task = nullptr;
   std::string title;
@@ -28,6 +34,7 @@ struct ViewInput {
   const PredictedSets* prediction = nullptr;  // null: nothing predicted
   const std::vector<RolloutRow>* ends = nullptr;  // null: no rollouts
   std::vector<ViewTrajectory> trajectories;
+  StickClassOf stick_class;  // empty: pieces are not shaded by class
 };
 
 // One layer: {id, name, group, style: {color, opacity}, visible, polygons, segments, points, polylines,

@@ -97,15 +97,17 @@ void write_view_assets(const std::filesystem::path& assets_dir) {
 void write_view_page(const nlohmann::json& data, const std::filesystem::path& html_file,
                      const std::string& assets_rel) {
   const std::string title = html_escape(data.value("title", std::string("cmt view")));
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +
-                     title + " (3-D)</title>\n<style>" + kStyle +
-                     "</style>\n</head>\n<body>\n<div id=\"page\">\n" +
-                     "<div id=\"panel\">\n<div id=\"title\"></div>\n<div id=\"units\"></div>\n" +
-                     "<div id=\"help\">Drag to turn, wheel to zoom, right-drag to pan. Click a piece for "
-                     "its details.</div>\n<ul id=\"layers\"></ul>\n<div id=\"info\"></div>\n"
-                     "<div id=\"errors\" data-count=\"0\" hidden></div>\n<div id=\"status\">loading</div>\n"
-                     "</div>\n<div id=\"view\"></div>\n</div>\n<script>window.CMT_VIEW_DATA = " +
-                     script_safe(json_text(data)) + ";</script>\n";
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + title +
+      " (3-D)</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<div id=\"page\">\n" +
+      "<div id=\"panel\">\n<div id=\"title\"></div>\n<div id=\"units\"></div>\n" +
+      "<div id=\"help\">Drag to turn, wheel to zoom, right-drag to pan. Click a piece for "
+      "its details. Predicted pieces: solid where the atom must stick, lighter where it may, faint where it "
+      "never sticks (a slow stop, sensing or the contact lift puts it there).</div>\n<ul "
+      "id=\"layers\"></ul>\n<div id=\"info\"></div>\n"
+      "<div id=\"errors\" data-count=\"0\" hidden></div>\n<div id=\"status\">loading</div>\n"
+      "</div>\n<div id=\"view\"></div>\n</div>\n<script>window.CMT_VIEW_DATA = " +
+      script_safe(json_text(data)) + ";</script>\n";
   for (const char* file : {"three.min.js", "OrbitControls.js", "cmt_view.js"})
     html += "<script src=\"" + html_escape(assets_rel) + "/" + file + "\"></script>\n";
   html += "</body>\n</html>\n";

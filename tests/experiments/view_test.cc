@@ -111,6 +111,37 @@ TEST(ViewData, LayersHoldExactlyThePredictedPiecesAndTheRecordedEnds) {
   EXPECT_EQ(data["focus"]["min"], json::array({0, 0, 0}));
   EXPECT_EQ(data["focus"]["max"], json::array({3, 3, 2.25}));
   EXPECT_EQ(data["bounds"]["max"], json::array({4, 4, 3}));
+  EXPECT_FALSE(a["polygons"][0]["info"].contains("stick"));  // no classes given: no shading
+}
+
+// With the atoms' stick classes, each predicted piece carries its class and is shaded by it: must solid, may
+// lighter, never (a slow-stop or contact-lift piece) faint; the free-space ball has no atom and no class.
+TEST(ViewData, PredictedPiecesAreShadedByTheirAtomsStickClass) {
+  const auto task = load_task_from_string(kRoomTask, "room");
+  report::PredictedSets prediction;
+  report::PredictedPiece face{0, "f0", "face", {{1, 0, 0}, {3, 0, 0}, {3, 0, 2}}, {}, {}, 0};
+  report::PredictedPiece vertex{20, "v0", "vertex", {{0, 0, 0}}, {}, {}, 0};
+  report::PredictedPiece edge{7, "e1", "edge", {{0, 0, 0}, {0, 1, 0}}, {}, {}, 0};
+  report::PredictedPiece ball{-1, "free", "free", {}, {}, Vec3(2, 2, 2), 0.25};
+  prediction.steps = {{"a", {face, vertex, edge, ball}}};
+  report::ViewInput in;
+  in.task = task.get();
+  in.prediction = &prediction;
+  std::vector<std::pair<std::string, int>> asked;
+  in.stick_class = [&](const LoadedTask&, const std::string& motion, int atom) -> std::string {
+    asked.push_back({motion, atom});
+    return atom == 0 ? "must" : atom == 20 ? "may" : "never";
+  };
+  const json l = layer(report::view_data(in), "predicted-0");
+  EXPECT_EQ(l["polygons"][0]["info"]["stick"], "must");
+  EXPECT_EQ(l["points"][0]["info"]["stick"], "may");
+  EXPECT_EQ(l["segments"][0]["info"]["stick"], "never");
+  const double must = l["polygons"][0]["style"]["opacity"], may = l["points"][0]["style"]["opacity"],
+               never = l["segments"][0]["style"]["opacity"];
+  EXPECT_GT(must, may);
+  EXPECT_GT(may, never);
+  EXPECT_FALSE(l["spheres"][0]["info"].contains("stick"));
+  EXPECT_EQ(asked, (std::vector<std::pair<std::string, int>>{{"a", 0}, {"a", 20}, {"a", 7}}));
 }
 
 // Text from the task (here the title) cannot end the data's <script> element early.

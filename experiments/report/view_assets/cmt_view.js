@@ -86,21 +86,25 @@
     return s;
   }
 
-  // One THREE.Group per layer; every pickable object carries the item's info in userData.
+  // One THREE.Group per layer; every pickable object carries the item's info in userData. An item's own
+  // `style` (e.g. the opacity of a predicted piece by its stick class) overrides the layer's.
   function buildLayer(layer, pointRadius) {
     const group = new THREE.Group();
     const style = Object.assign({color: '#888888', opacity: 1}, layer.style || {});
     const pick = (obj, info) => { obj.userData = {layer: layer.name, info: info || {}}; return obj; };
+    const own = (item) => (item.style ? Object.assign({}, style, item.style) : style);  // per-item override
     for (const poly of layer.polygons || []) {
       const tris = polygonTriangles(poly.points, poly.holes);
-      if (tris.length) group.add(pick(meshOfTriangles(tris, style), poly.info));
-      if (style.outline !== false) group.add(pick(lineOf(poly.points, style, true), poly.info));
+      if (tris.length) group.add(pick(meshOfTriangles(tris, own(poly)), poly.info));
+      if (style.outline !== false) group.add(pick(lineOf(poly.points, own(poly), true), poly.info));
     }
-    for (const seg of layer.segments || []) group.add(pick(lineOf(seg.points, style, false), seg.info));
-    for (const line of layer.polylines || []) group.add(pick(lineOf(line.points, style, false), line.info));
-    const r = pointRadius * (style.size || 1);
-    for (const pt of layer.points || []) group.add(pick(sphereOf(pt.point, r, style, false), pt.info));
-    for (const sp of layer.spheres || []) group.add(pick(sphereOf(sp.center, sp.radius, style, true), sp.info));
+    for (const seg of layer.segments || []) group.add(pick(lineOf(seg.points, own(seg), false), seg.info));
+    for (const line of layer.polylines || []) group.add(pick(lineOf(line.points, own(line), false), line.info));
+    for (const pt of layer.points || []) {
+      const s = own(pt);
+      group.add(pick(sphereOf(pt.point, pointRadius * (s.size || 1), s, false), pt.info));
+    }
+    for (const sp of layer.spheres || []) group.add(pick(sphereOf(sp.center, sp.radius, own(sp), true), sp.info));
     return group;
   }
 
