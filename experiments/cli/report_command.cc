@@ -6,6 +6,7 @@
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
 #include "experiments/cli/sticking_command.h"
+#include "experiments/cli/view_command.h"
 #include "experiments/report/report.h"
 
 namespace cmt {
@@ -21,8 +22,8 @@ void add_report_command(CLI::App& app, CommandState& state) {
   cmd->add_option("-o,--output", options->out_dir, "report directory (created if missing)")->required();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([options, &state] {
-    const report::ReportSummary r =
-        report::write_report(options->database, options->out_dir, verifier_stick_classes());
+    const report::ReportSummary r = report::write_report(options->database, options->out_dir,
+                                                         verifier_stick_classes(), replay_counterexample);
     if (state.json)
       print_json({{"index", r.index.string()},
                   {"markdown", r.markdown.string()},

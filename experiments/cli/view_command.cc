@@ -3,11 +3,15 @@
 // verifier's predicted termination sets; with --results the prediction and the observed motion ends that a
 // sweep recorded for configuration K; with --rollouts N also N rollouts' trajectories (impedance form,
 // uniform errors, seeded). Writes DIR/index.html and its assets beside it.
+#include "experiments/cli/view_command.h"
+
 #include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <thread>
 
+#include "controllers/controller.h"
+#include "controllers/error_model.h"
 #include "controllers/termination.h"
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
@@ -64,6 +68,33 @@ std::vector<report::ViewTrajectory> run_trajectories(std::shared_ptr<const Loade
   return out;
 }
 
+}  // namespace
+
+std::vector<report::ViewTrajectory> replay_counterexample(std::shared_ptr<const LoadedTask> task,
+                                                          const report::ConfigRow& row) {
+  const Strategy* found = task->task.find_strategy(row.strategy);
+  if (!found || !row.metrics || !row.metrics->counterexample.is_object()) return {};
+  const Strategy& strategy = *found;
+  const nlohmann::json& cx = row.metrics->counterexample;
+  // A counterexample without its stream (seed, index) cannot be replayed; the report still shows its text.
+  if (!cx.contains("seed") || !cx["seed"].is_number_unsigned() || !cx.contains("index") ||
+      !cx["index"].is_number_integer())
+    return {};
+  SimOptions sim;
+  sim.form = parse_controller_form(row.controller).value_or(ControllerForm::kImpedance);
+  sim.mode = parse_sample_mode(cx.value("mode", std::string("uniform"))).value_or(SampleMode::kUniform);
+  sim.record_trajectory = true;
+  RolloutRunner runner(RolloutScene::build(task, sim));
+  const RolloutOutcome r =
+      runner.run(strategy, cx.at("seed").get<std::uint64_t>(), cx.at("index").get<int>());
+  report::ViewTrajectory t{r.index, r.success, {}};
+  for (const TrajectoryPoint& p : r.trajectory) t.points.push_back(p.position);
+  t.points.push_back(r.end);
+  return {t};
+}
+
+namespace {
+
 nlohmann::json run_view(const ViewOptions& o, bool* reliable) {
   const auto start = std::chrono::steady_clock::now();
   std::shared_ptr<const LoadedTask> task = load_task(o.task);
@@ -95,6 +126,7 @@ nlohmann::json run_view(const ViewOptions& o, bool* reliable) {
   input.ends = row ? &row->rollouts : nullptr;
   input.stick_class = verifier_stick_classes();
   if (strategy && o.rollouts > 0) input.trajectories = run_trajectories(task, *strategy, o);
+  if (row) input.counterexample = replay_counterexample(task, *row);
   const nlohmann::json data = report::view_data(input);
   report::write_view_assets(o.out_dir);
   report::write_view_page(data, std::filesystem::path(o.out_dir) / "index.html", ".");

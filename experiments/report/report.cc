@@ -48,8 +48,9 @@ void prepare_output(const std::filesystem::path& out_dir) {
 
 class ReportBuilder {
  public:
-  ReportBuilder(const ResultsDb& db, const std::filesystem::path& out_dir, StickClassOf stick_class)
-      : db_(db), out_dir_(out_dir), stick_class_(std::move(stick_class)) {}
+  ReportBuilder(const ResultsDb& db, const std::filesystem::path& out_dir, StickClassOf stick_class,
+                CounterexampleReplay replay)
+      : db_(db), out_dir_(out_dir), stick_class_(std::move(stick_class)), replay_(std::move(replay)) {}
 
   ConfigSection section(const ConfigRow& c) {
     ConfigSection s;
@@ -102,8 +103,20 @@ class ReportBuilder {
     try {
       if (!view_assets_written_) write_view_assets(out_dir_ / kViewDir);
       view_assets_written_ = true;
-      ViewInput input{figure.task,     figure.title, figure.motions, figure.prediction,
-                      figure.rollouts, {},           stick_class_};
+      ViewInput input;
+      input.task = figure.task;
+      input.title = figure.title;
+      input.motions = figure.motions;
+      input.prediction = figure.prediction;
+      input.ends = figure.rollouts;
+      input.stick_class = stick_class_;
+      if (replay_) {
+        try {
+          input.counterexample = replay_(loaded(c), c);
+        } catch (const std::exception& e) {  // a MuJoCo error: the page is still written, without it
+          s.notes.push_back(std::string("counterexample not replayed: ") + e.what());
+        }
+      }
       const std::string page =
           std::string(kViewDir) + "/" + kFigurePrefix + std::to_string(c.config_id) + ".html";
       write_view_page(view_data(input), out_dir_ / page, ".");
@@ -169,15 +182,16 @@ class ReportBuilder {
   nlohmann::json figures_ = nlohmann::json::array();
   bool view_assets_written_ = false;
   StickClassOf stick_class_;
+  CounterexampleReplay replay_;
 };
 
 }  // namespace
 
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
-                           const StickClassOf& stick_class) {
+                           const StickClassOf& stick_class, const CounterexampleReplay& replay) {
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
-  ReportBuilder builder(db, out_dir, stick_class);
+  ReportBuilder builder(db, out_dir, stick_class, replay);
   std::vector<ConfigSection> sections;
   ReportSummary summary;
   for (const ConfigRow& c : db.configs) {

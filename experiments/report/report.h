@@ -19,7 +19,8 @@ struct ReportSummary {
 // Throws TaskError (file, key, reason) for a bad database or bad content in it, std::runtime_error when the
 // output cannot be written.
 // `stick_class`: shades the 3-D pages' predicted pieces by their atom's stick class (empty: no shading).
+// `replay`: draws each configuration's counterexample trajectory on its 3-D page (empty: none drawn).
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
-                           const StickClassOf& stick_class = {});
+                           const StickClassOf& stick_class = {}, const CounterexampleReplay& replay = {});
 
 }  // namespace cmt::report

@@ -111,6 +111,13 @@ void check_schema(const Database& db) {
   }
 }
 
+bool has_column(const Database& db, const std::string& table, const std::string& column) {
+  Statement info(db, "PRAGMA table_info(" + table + ")", table);
+  while (info.step())
+    if (info.text(1) == column) return true;
+  return false;
+}
+
 // A JSON text column; NULL or empty text is JSON null.
 nlohmann::json json_column(const Database& db, const Statement& s, int col, const std::string& key) {
   if (s.null(col)) return nullptr;
@@ -147,9 +154,12 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
   }
   std::map<std::int64_t, std::size_t> index;  // config_id -> position in out.configs
   {
+    // `controller` is a later addition to the schema: databases without it ran the default, impedance.
+    const std::string controller = has_column(db, "configs", "controller") ? "controller" : "'impedance'";
     Statement s(db,
                 "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
-                "mode, status, finished FROM configs ORDER BY config_id",
+                "mode, status, finished, " +
+                    controller + " FROM configs ORDER BY config_id",
                 "configs");
     while (s.step()) {
       ConfigRow c;
@@ -169,6 +179,8 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
       c.mode = s.text(10);
       c.status = s.text(11);
       c.finished = s.text(12);
+      c.controller = s.text(13);
+      if (c.controller.empty()) c.controller = "impedance";
       index[c.config_id] = out.configs.size();
       out.configs.push_back(std::move(c));
     }

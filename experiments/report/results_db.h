@@ -56,6 +56,7 @@ struct ConfigRow {
   nlohmann::json params;  // object of parameter overrides
   std::int64_t n = 0, seed = 0;
   std::string mode, status, finished;
+  std::string controller = "impedance";  // cmt validate --controller of the unit
   std::optional<PredictionRow> prediction;
   std::vector<RolloutRow> rollouts;  // ordered by (rollout, motion)
   std::optional<MetricsRow> metrics;

@@ -167,8 +167,9 @@ json ends_layers(const std::vector<RolloutRow>& ends, const std::vector<std::str
   return out;
 }
 
-json trajectory_layer(const std::vector<ViewTrajectory>& trajectories) {
-  json layer = make_layer("trajectories", "rollout trajectories", "rollouts", "#555555", 0.9);
+json trajectory_layer(const std::vector<ViewTrajectory>& trajectories, const std::string& id,
+                      const std::string& name, const std::string& color) {
+  json layer = make_layer(id, name, "rollouts", color, 0.9);
   for (const ViewTrajectory& t : trajectories)
     layer["polylines"].push_back(
         {{"points", points(t.points)}, {"info", {{"rollout", t.rollout}, {"success", t.success}}}});
@@ -217,6 +218,7 @@ json focus_of(const ViewInput& in) {
   if (in.ends)
     for (const RolloutRow& r : *in.ends) box.grow(r.end);
   for (const ViewTrajectory& t : in.trajectories) box.grow(t.points);
+  for (const ViewTrajectory& t : in.counterexample) box.grow(t.points);
   return box.to_json();
 }
 
@@ -249,7 +251,11 @@ nlohmann::json view_data(const ViewInput& in) {
   }
   if (in.ends)
     for (json& l : ends_layers(*in.ends, motions)) layers.push_back(std::move(l));
-  if (!in.trajectories.empty()) layers.push_back(trajectory_layer(in.trajectories));
+  if (!in.trajectories.empty())
+    layers.push_back(trajectory_layer(in.trajectories, "trajectories", "rollout trajectories", "#555555"));
+  if (!in.counterexample.empty())
+    layers.push_back(
+        trajectory_layer(in.counterexample, "counterexample", "counterexample (replayed)", "#e00000"));
   return {{"format", "cmt-view-1"},
           {"title", in.title},
           {"units", unit_name(lt.task.units)},

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,6 +28,12 @@ struct ViewTrajectory {
 // the verifier).
 using StickClassOf = std::function<std::string(const LoadedTask& task, const std::string& motion, int atom)>;
 
+struct ConfigRow;
+// The failing rollout a configuration's validation recorded (metrics.counterexample), replayed with its
+// trajectory; empty when there is none. The caller supplies it (this library does not link the simulator).
+using CounterexampleReplay =
+    std::function<std::vector<ViewTrajectory>(std::shared_ptr<const LoadedTask> task, const ConfigRow& row)>;
+
 struct ViewInput {
   const LoadedTask* task = nullptr;
   std::string title;
@@ -34,7 +41,8 @@ struct ViewInput {
   const PredictedSets* prediction = nullptr;  // null: nothing predicted
   const std::vector<RolloutRow>* ends = nullptr;  // null: no rollouts
   std::vector<ViewTrajectory> trajectories;
-  StickClassOf stick_class;  // empty: pieces are not shaded by class
+  std::vector<ViewTrajectory> counterexample;  // the replayed failing rollout, if any
+  StickClassOf stick_class;                    // empty: pieces are not shaded by class
 };
 
 // One layer: {id, name, group, style: {color, opacity}, visible, polygons, segments, points, polylines,

@@ -185,6 +185,37 @@ TEST(CmtView, BadArgumentsExitWithStatus2) {
   EXPECT_EQ(r.status, 2);
 }
 
+// A strategy that misses its goal (the slide ends in the corner (0,0,0), the goal is (4,0,0)): the sweep
+// records a counterexample, and the page's replay of it ends where the validation saw it end.
+TEST(CmtView, TheCounterexampleIsReplayedToItsRecordedEnd) {
+  const fs::path dir = test::fresh_dir("view-cx");
+  std::string yaml = kRoomTask;
+  yaml.replace(yaml.find("goal: {point: [0, 0, 0]}"), 24, "goal: {point: [4, 0, 0]}");
+  test::write_file(dir / "room.yaml", yaml);
+  test::write_file(dir / "spec.yaml",
+                   "n: 3\nseeds: [5]\nmode: extreme\ncounterexample_budget: 0\n"
+                   "tasks:\n  - file: room.yaml\n    strategies: [s]\n");
+  ASSERT_EQ(
+      test::run("sweep " + (dir / "spec.yaml").string() + " --db " + (dir / "db.sqlite").string()).status, 0);
+  const auto cx =
+      json::parse(test::query_rows(dir / "db.sqlite", "SELECT counterexample FROM metrics").at(0).at(0));
+  ASSERT_TRUE(cx.is_object());
+  const auto r = test::run("view " + (dir / "room.yaml").string() + " --results " +
+                           (dir / "db.sqlite").string() + " --config 1 -o " + (dir / "view").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::stringstream html;
+  html << std::ifstream(dir / "view" / "index.html").rdbuf();
+  const std::string text = html.str();
+  const std::string prefix = "window.CMT_VIEW_DATA = ";
+  const std::size_t at = text.find(prefix) + prefix.size();
+  const json data = json::parse(text.substr(at, text.find(";</script>", at) - at));
+  const json& line = layer(data, "counterexample")["polylines"].at(0);
+  EXPECT_EQ(line["info"]["success"], false);
+  const json& end = line["points"].back();
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(end[k].get<double>(), cx["end"][k].get<double>(), 1e-12) << k;
+  EXPECT_GT(line["points"].size(), 10u);
+}
+
 // ---- in a browser ----
 
 bool have_chromium() { return std::system("command -v chromium > /dev/null 2>&1") == 0; }
