@@ -44,6 +44,52 @@ std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, d
   return out;
 }
 
+// The support bound's search over lambda (any lambda is sound, so these only set how tight the bound is):
+// within [−kLambdaRange, kLambdaRange], to a bracket of kLambdaResolution (the width 60 golden-section steps
+// leave of the whole range), starting from a bracket of half-width kLambdaWarmWidth x (1 + |guess|) about the
+// previous direction's minimiser.
+constexpr double kLambdaRange = 1e3;
+constexpr double kLambdaResolution = 2 * kLambdaRange * 3.1e-13;
+constexpr double kLambdaWarmWidth = 1e-2;
+
+// The least value found of f on [−kLambdaRange, kLambdaRange], searched to a bracket of kLambdaResolution;
+// *guess: where to start, and on return the minimiser found. A bracket [lo, hi] about the guess is widened
+// (doubling) until f(mid) <= f(lo), f(hi) or it reaches the range's end, so that it holds a minimiser when f
+// is convex; golden-section steps then shrink it. A support bound that is the minimum of two bounds (the
+// spiral's) is not convex everywhere, and then this finds a local minimum. Every value is an f(lambda), so
+// the result is as sound as any single evaluation; the search only sets how tight it is.
+double minimize_over_lambda(const std::function<double(double)>& f, double* guess) {
+  const double width = kLambdaWarmWidth * (1 + std::abs(*guess));
+  double mid = std::clamp(*guess, -kLambdaRange, kLambdaRange);
+  double lo = std::max(-kLambdaRange, mid - width), hi = std::min(kLambdaRange, mid + width);
+  double f_lo = f(lo), f_mid = f(mid), f_hi = f(hi);
+  while (f_lo < f_mid && lo > -kLambdaRange) {  // the minimum lies to the left
+    hi = mid, f_hi = f_mid, mid = lo, f_mid = f_lo;
+    lo = std::max(-kLambdaRange, mid - 2 * (hi - mid));
+    f_lo = f(lo);
+  }
+  while (f_hi < f_mid && hi < kLambdaRange) {  // to the right
+    lo = mid, f_lo = f_mid, mid = hi, f_mid = f_hi;
+    hi = std::min(kLambdaRange, mid + 2 * (mid - lo));
+    f_hi = f(hi);
+  }
+  double best = std::min({f_lo, f_mid, f_hi});
+  *guess = best == f_mid ? mid : (best == f_lo ? lo : hi);
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  double a = lo, b = hi;
+  double x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = f(x1), f2 = f(x2);
+  while (b - a > kLambdaResolution) {
+    if (f1 <= f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = f(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = f(x2);
+    }
+  }
+  for (const auto& [x, fx] : {std::pair{x1, f1}, std::pair{x2, f2}})
+    if (fx < best) best = fx, *guess = x;
+  return best;
+}
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -53,9 +99,6 @@ constexpr double kSlack = 1e-9;
 constexpr double kVelocitySnap = 1e-7;
 // Angular margin (rad) by which a face normal must lie inside a piece's tip cone for touches_only_at_tips.
 constexpr double kVelocityTipMargin = 1e-6;
-// Golden-section steps per support bound (the bracket [−1e3, 1e3] shrinks by 0.618 per step; any lambda is
-// sound, so this only sets how tight the bound is).
-constexpr int kGoldenSteps = 60;
 
 // The support function w -> max { y . w : y in the set } of a convex set (w need not be a unit vector).
 using Support = std::function<double(const Vec3&)>;
@@ -96,10 +139,10 @@ void clip_poly(std::vector<std::array<double, 2>>& poly, double cs, double sn, d
 // Outer polygon (chart coordinates, clipped to the face) of the section of the intersection of convex sets
 // by face fi's plane n . y = c. For a unit in-plane direction v and any lambda, v . y = (v + lambda n) . y −
 // lambda c <= h(v + lambda n) − lambda c on the section, so every lambda gives a sound bound; a
-// golden-section search over the convex function of lambda makes it tight. The polygon is the intersection of
+// search over lambda (minimize_over_lambda) makes it tight. The polygon is the intersection of
 // kVelocitySupportDirections such half-planes per set, each bound raised by a margin for the rounding of
-// doubles; kGoldenSteps steps of the search. `in_plane`: every set's support is of the form g(v) + (w . n) c
-// for w = v + lambda n (a set given by its in-plane section), so lambda = 0 is as tight as any: no search.
+// doubles. `in_plane`: every set's support is of the form g(v) + (w . n)
+// c for w = v + lambda n (a set given by its in-plane section), so lambda = 0 is as tight as any: no search.
 //
 // `cuts`: half-spaces that hold the whole motion (velocity_invariant_half_spaces); the polygon is also
 // clipped to their lines in the plane (exact lines in doubles, rounded outward with the rest).
@@ -125,6 +168,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   std::vector<std::array<double, 2>> poly = {
       {cx - big, cy - big}, {cx + big, cy - big}, {cx + big, cy + big}, {cx - big, cy + big}};
   for (const Support& h : sets) {
+    double guess = 0;  // the minimiser moves little between neighbouring directions
     for (int j = 0; j < kVelocitySupportDirections && !poly.empty(); ++j) {
       const double th = 2 * kPi * j / kVelocitySupportDirections;
       const double cs = std::cos(th), sn = std::sin(th);
@@ -134,25 +178,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
         clip_poly(poly, cs, sn, f(0) + margin * (1 + std::abs(f(0))));
         continue;
       }
-      double a = -1e3, b = 1e3;
-      const double r = (std::sqrt(5.0) - 1) / 2;
-      double x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = f(x1), f2 = f(x2);
-      for (int it = 0; it < kGoldenSteps; ++it) {
-        if (f1 <= f2) {
-          b = x2;
-          x2 = x1;
-          f2 = f1;
-          x1 = b - r * (b - a);
-          f1 = f(x1);
-        } else {
-          a = x1;
-          x1 = x2;
-          f1 = f2;
-          x2 = a + r * (b - a);
-          f2 = f(x2);
-        }
-      }
-      const double best = std::min(f1, f2);
+      const double best = minimize_over_lambda(f, &guess);
       clip_poly(poly, cs, sn, best + margin * (1 + std::abs(best)));
     }
   }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #include "verifier/internal/flight.h"
@@ -44,6 +45,10 @@ inline constexpr int kVelocitySupportDirections = 32;
 
 // The angle between two vectors (atan2 of |a x b| and a . b: accurate near 0 and pi).
 double angle_between(const Vec3& a, const Vec3& b);
+
+// The support bounds' search over lambda (spring_velocity.cc support_section): the least value found of f on
+// [−1e3, 1e3], from a bracket about *guess, which returns the minimiser found.
+double minimize_over_lambda(const std::function<double(double)>& f, double* guess);
 
 // Keeps the part of the planar convex polygon `poly` (3-D points) where n . x <= c (Sutherland-Hodgman, in
 // doubles).
