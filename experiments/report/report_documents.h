@@ -15,6 +15,9 @@ namespace cmt::report {
 std::string render_markdown(const ReportContent& content);
 std::string render_html(const ReportContent& content);
 
+// `&`, `<`, `>` and `"` as HTML entities (text and attribute values).
+std::string html_escape(const std::string& text);
+
 // Writes text to a file; throws std::runtime_error naming the file when it cannot.
 void write_text_file(const std::filesystem::path& file, const std::string& text);
 
