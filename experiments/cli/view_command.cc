@@ -51,6 +51,14 @@ report::ConfigRow config_row(const ViewOptions& o, const Task& task) {
   throw TaskError(o.results, "--config", "no configuration " + std::to_string(o.config));
 }
 
+// A recorded rollout as the page draws it: its sampled path, then its end.
+report::ViewTrajectory view_trajectory(const RolloutOutcome& r) {
+  report::ViewTrajectory t{r.index, r.success, {}};
+  for (const TrajectoryPoint& p : r.trajectory) t.points.push_back(p.position);
+  t.points.push_back(r.end);
+  return t;
+}
+
 std::vector<report::ViewTrajectory> run_trajectories(std::shared_ptr<const LoadedTask> task,
                                                      const Strategy& strategy, const ViewOptions& o) {
   SimOptions sim;
@@ -60,10 +68,7 @@ std::vector<report::ViewTrajectory> run_trajectories(std::shared_ptr<const Loade
                                      static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
   std::vector<report::ViewTrajectory> out;
   for (const RolloutOutcome& r : outcomes) {
-    report::ViewTrajectory t{r.index, r.success, {}};
-    for (const TrajectoryPoint& p : r.trajectory) t.points.push_back(p.position);
-    t.points.push_back(r.end);
-    out.push_back(std::move(t));
+    out.push_back(view_trajectory(r));
   }
   return out;
 }
@@ -87,10 +92,7 @@ std::vector<report::ViewTrajectory> replay_counterexample(std::shared_ptr<const 
   RolloutRunner runner(RolloutScene::build(task, sim));
   const RolloutOutcome r =
       runner.run(strategy, cx.at("seed").get<std::uint64_t>(), cx.at("index").get<int>());
-  report::ViewTrajectory t{r.index, r.success, {}};
-  for (const TrajectoryPoint& p : r.trajectory) t.points.push_back(p.position);
-  t.points.push_back(r.end);
-  return {t};
+  return {view_trajectory(r)};
 }
 
 namespace {
