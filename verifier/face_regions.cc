@@ -213,6 +213,29 @@ std::vector<Points2> convex_pieces(const PolygonSet2& set) {
   return out;
 }
 
+PolygonSet2 union_of(std::vector<PolygonSet2> sets) {
+  if (sets.empty()) return PolygonSet2();
+  while (sets.size() > 1) {
+    std::vector<PolygonSet2> next;
+    next.reserve((sets.size() + 1) / 2);
+    for (std::size_t i = 0; i + 1 < sets.size(); i += 2) {
+      sets[i].join(sets[i + 1]);
+      next.push_back(std::move(sets[i]));
+    }
+    if (sets.size() % 2 == 1) next.push_back(std::move(sets.back()));
+    sets = std::move(next);
+  }
+  return std::move(sets.front());
+}
+
+PolygonSet2 union_of(const std::vector<Polygon2>& polygons) {
+  return union_of(std::vector<PolygonSet2>(polygons.begin(), polygons.end()));
+}
+
+PolygonSet2 union_of(const std::vector<PolygonWithHoles2>& polygons) {
+  return union_of(std::vector<PolygonSet2>(polygons.begin(), polygons.end()));
+}
+
 double area(const PolygonSet2& set) {
   std::vector<PolygonWithHoles2> pwhs;
   set.polygons_with_holes(std::back_inserter(pwhs));

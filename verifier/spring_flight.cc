@@ -167,7 +167,7 @@ std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<P
       const FT k = value(H, q) / nn;
       return chart.project(Point3(q.x() - k * H.a(), q.y() - k * H.b(), q.z() - k * H.c()));
     };
-    std::vector<Polygon2> layer_polygons;  // joined in one aggregated sweep below
+    std::vector<Polygon2> layer_polygons;  // united below (union_of)
     Points2 lower;
     const int layers = eps_t > 0 ? kSpringSlabLayers : 1;
     for (int k = 0; k < layers; ++k) {
@@ -199,8 +199,7 @@ std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<P
       else if (!grown.empty() && lower.empty())
         lower = grown;
     }
-    PolygonSet2 region;
-    if (!layer_polygons.empty()) region.join(layer_polygons.begin(), layer_polygons.end());
+    const PolygonSet2 region = union_of(layer_polygons);
     if (region.is_empty() && lower.empty()) continue;
     FlightHit hit;
     hit.face = static_cast<int>(gi);

@@ -206,8 +206,7 @@ class SpringProjector {
             convex_hull(Points2(c.outer_boundary().vertices_begin(), c.outer_boundary().vertices_end()));
         if (hull.size() >= 3) hulls.push_back(to_polygon(hull));
       }
-      PolygonSet2 filled;
-      if (!hulls.empty()) filled.join(hulls.begin(), hulls.end());
+      const PolygonSet2 filled = union_of(hulls);
       if (!filled.is_empty()) add_reached_region(fi, filled);
     } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole face (a superset)
       // The velocity model bounds every point of the motion by the reach ball: the face's part inside it.
@@ -409,19 +408,18 @@ class SpringProjector {
       std::vector<Points2> sources = convex_pieces(entry);
       for (const Points2& l : lower)
         if (!sticks_strongly(fi, l)) sources.push_back(l);
-      // The slides are united in one aggregated join (a single sweep) rather than one overlay per source.
-      std::vector<PolygonWithHoles2> slid_parts;
+      // The slides are united in a balanced tree of overlays (union_of), not one after another.
+      std::vector<PolygonSet2> slid_parts;
       for (const Points2& src : sources) {
         if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
         Points2 lower_out;
         PolygonSet2 slid = velocity_slide(r_, fi, src, vm_, &lower_out);
         if (!slid.is_empty())
-          slid.polygons_with_holes(std::back_inserter(slid_parts));
+          slid_parts.push_back(std::move(slid));
         else if (!lower_out.empty())
           add_reached_lower(fi, lower_out);
       }
-      PolygonSet2 slid_all;
-      if (!slid_parts.empty()) slid_all.join(slid_parts.begin(), slid_parts.end());
+      PolygonSet2 slid_all = union_of(std::move(slid_parts));
       if (!slid_all.is_empty()) {
         slid_all.difference(no_slide_[fi]);
         add_reached_region(fi, slid_all);

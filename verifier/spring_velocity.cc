@@ -478,7 +478,7 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
   for (auto& [face, polys] : regions) {
     FlightHit hit;
     hit.face = face;
-    hit.region.join(polys.begin(), polys.end());
+    hit.region = union_of(polys);
     out.push_back(std::move(hit));
   }
   for (auto& [face, lower] : lowers) {
@@ -846,8 +846,7 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
                      first_lower = piece_lower;
                    }
                  });
-  PolygonSet2 out;
-  if (!polys.empty()) out.join(polys.begin(), polys.end());
+  PolygonSet2 out = union_of(polys);
   if (out.is_empty()) *lower = first_lower;
   return out;
 }

@@ -72,6 +72,17 @@ Polygon2 to_polygon(const Points2& convex_ccw);
 std::vector<Points2> convex_pieces(const PolygonSet2& set);
 double area(const PolygonSet2& set);
 
+// The union of many regions by pairwise overlays in a balanced tree. Never CGAL's aggregated
+// Polygon_set_2::join(begin, end): CGAL 5.5 sweeps all inputs at once, and where edges of three or more
+// inputs overlap on one line (parts clipped to one face edge, pieces cut along one line) its overlap step
+// for curves with common ancestors (Surface_sweep_2_impl.h, the assertion at l.630 in a debug build) can
+// build a corrupt arrangement. Which runs hit it depends on the order of subcurve addresses: the result is
+// then non-simple and a later operation on it may crash. A pairwise overlay meets at most two overlapping
+// edges at a time (docs/verifier-speed.md, "Unions of many regions").
+PolygonSet2 union_of(std::vector<PolygonSet2> sets);
+PolygonSet2 union_of(const std::vector<Polygon2>& polygons);
+PolygonSet2 union_of(const std::vector<PolygonWithHoles2>& polygons);
+
 // What one face holds.
 struct FaceSet {
   PolygonSet2 region;
