@@ -47,9 +47,9 @@ class ReachedSet {
   static ReachedSet from_region(const LoadedTask& task, const Region& region);
   static ReachedSet from_regions(const LoadedTask& task, const std::vector<Region>& regions);
   // The inverse of pieces(), for sets stored as pieces (JSON): face pieces of 3+ points are regions (outer
-  // boundary minus holes; a boundary that is not simple after rounding to doubles is replaced by its convex
-  // hull, a superset), of 2 or 1 points segments and points; an edge piece's ends become parameters on its
-  // edge (clamped to [0, 1]); vertices as they are.
+  // boundary minus holes; where rounding to doubles broke a ring, a superset: the outer boundary's convex
+  // hull, the hole not subtracted), of 2 or 1 points segments and points; an edge piece's ends become
+  // parameters on its edge (clamped to [0, 1]); vertices as they are.
   static ReachedSet from_pieces(const CSpace& cspace, const std::vector<ReachedPiece>& pieces);
 
   const CSpace& cspace() const;

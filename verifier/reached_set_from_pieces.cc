@@ -13,31 +13,32 @@ using fp::Points2;
 using fp::Polygon2;
 using fp::PolygonSet2;
 
-// A ring of 3-D points in a face's chart, counter-clockwise when `ccw`; a ring that is not simple after the
-// rounding to doubles becomes its convex hull (a superset); empty when it has no area.
-Polygon2 chart_ring(const fp::FaceChart& chart, const std::vector<Vec3>& ring, bool ccw) {
+// A ring of 3-D points in a face's chart, counter-clockwise; empty when it has no area or, after the
+// rounding to doubles, is not simple.
+Polygon2 chart_ring(const fp::FaceChart& chart, const std::vector<Vec3>& ring) {
   Points2 pts;
   for (const Vec3& p : ring) pts.push_back(chart.project(p));
   Polygon2 poly(pts.begin(), pts.end());
-  if (poly.size() < 3) return Polygon2();
-  if (!poly.is_simple()) {
-    const Points2 hull = fp::convex_hull(pts);
-    if (hull.size() < 3) return Polygon2();
-    poly = fp::to_polygon(hull);
-  }
-  if (poly.area() == 0) return Polygon2();
-  if ((poly.orientation() == CGAL::COUNTERCLOCKWISE) != ccw) poly.reverse_orientation();
+  if (poly.size() < 3 || !poly.is_simple() || poly.area() == 0) return Polygon2();
+  if (poly.orientation() != CGAL::COUNTERCLOCKWISE) poly.reverse_orientation();
   return poly;
 }
 
 // The face region of a piece of 3+ points: its outer boundary minus its holes (pairwise overlays, so a hole
-// that touches the boundary after rounding is still a valid operand).
+// that touches the boundary after rounding is still a valid operand). Where rounding broke a ring, the
+// result stays a superset: an outer boundary becomes its convex hull, a hole is not subtracted.
 PolygonSet2 face_region(const fp::FaceChart& chart, const ReachedPiece& piece) {
-  const Polygon2 outer = chart_ring(chart, piece.polygon, true);
-  if (outer.is_empty()) return PolygonSet2();
+  Polygon2 outer = chart_ring(chart, piece.polygon);
+  if (outer.is_empty()) {
+    Points2 pts;
+    for (const Vec3& p : piece.polygon) pts.push_back(chart.project(p));
+    const Points2 hull = fp::convex_hull(pts);
+    if (hull.size() < 3) return PolygonSet2();
+    outer = fp::to_polygon(hull);
+  }
   PolygonSet2 region(outer);
   for (const std::vector<Vec3>& hole : piece.holes) {
-    const Polygon2 h = chart_ring(chart, hole, true);
+    const Polygon2 h = chart_ring(chart, hole);
     if (!h.is_empty()) region.difference(h);
   }
   return region;
