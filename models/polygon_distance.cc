@@ -27,4 +27,16 @@ double distance_to_convex_polygon(const Vec3& p, const std::vector<Vec3>& polygo
   return best;
 }
 
+Vec3 polygon_normal(const std::vector<Vec3>& polygon) {
+  // Newell's method: the normal about which the polygon's own vertex order is counter-clockwise.
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % polygon.size()];
+    n += Vec3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+              (a.x() - b.x()) * (a.y() + b.y()));
+  }
+  return n.normalized();
+}
+
 }  // namespace cmt

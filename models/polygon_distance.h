@@ -8,5 +8,7 @@ namespace cmt {
 double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 // `polygon` is convex and planar, counter-clockwise about the unit `normal`.
 double distance_to_convex_polygon(const Vec3& p, const std::vector<Vec3>& polygon, const Vec3& normal);
+// The unit normal about which a planar polygon's own vertex order is counter-clockwise (Newell's method).
+Vec3 polygon_normal(const std::vector<Vec3>& polygon);
 
 }  // namespace cmt

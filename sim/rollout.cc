@@ -37,18 +37,6 @@ const char* const kWarningNames[mjNWARNING] = {"inertia",
                                                "bad qacc",
                                                "bad ctrl"};
 
-Vec3 polygon_normal(const std::vector<Vec3>& polygon) {
-  // Newell's method: the normal about which the polygon's own vertex order is counter-clockwise.
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const Vec3& a = polygon[i];
-    const Vec3& b = polygon[(i + 1) % polygon.size()];
-    n += Vec3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
-              (a.x() - b.x()) * (a.y() + b.y()));
-  }
-  return n.normalized();
-}
-
 }  // namespace
 
 double distance_to_region(const Vec3& p, const Region& region) {
@@ -313,17 +301,24 @@ void RolloutRunner::drive(const Vec3& position, const Motion& motion, double dur
 }
 
 RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, int index) {
+  const RolloutScene& scene = *impl_->scene;
+  const LoadedTask& lt = scene.task();
+  Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(index));
+  const ErrorSampler sampler(lt.task.uncertainty, scene.options().mode, lt.task.dimension == 2);
+  SampledErrors errors(sampler, rng, scene.options().switch_interval);
+  return run(strategy, errors, index);
+}
+
+RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors, int index) {
   Impl& s = *impl_;
   const RolloutScene& scene = *s.scene;
   const LoadedTask& lt = scene.task();
   const SimOptions& options = scene.options();
   const double dt = scene.timestep();
-  Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(index));
-  const ErrorSampler sampler(lt.task.uncertainty, options.mode, lt.task.dimension == 2);
 
   RolloutOutcome out;
   out.index = index;
-  out.start = sample_region(lt.task.start, options.mode, rng);
+  out.start = errors.start(lt.task.start);
   s.reset(out.start);
   double rollout_time = 0;
   bool all_terminated = true;
@@ -338,11 +333,11 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
     MotionOutcome mo;
     mo.motion = motion->name;
     mo.node = node_id;
-    MotionErrors errors(sampler, rng, options.switch_interval);
+    errors.begin_motion(node_id);
     const Vec3 start = s.position();
     auto controller =
         make_controller(*motion, options.form, scene.controller_params(), start + errors.sensing_offset(),
-                        [&] { return sampler.positioning_error(rng); });
+                        [&] { return errors.positioning_error(); });
     auto spec_it = options.terminations.find(motion->name);
     TerminationMonitor monitor(spec_it == options.terminations.end() ? TerminationSpec{} : spec_it->second,
                                controller->reference_speed(), controller->guard_force(), dt);
@@ -351,7 +346,7 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
     long step = 0;
     for (; step < limit && !end; ++step) {
       const double t = static_cast<double>(step) * dt;
-      errors.advance(t, rng);
+      errors.advance(t);
       Sensed sensed;
       sensed.time = t;
       sensed.position = s.position() + errors.sensing_offset();
@@ -398,8 +393,9 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
       node_id = node.next;
     } else if (!node.branches.empty()) {
       // Buckley §4.2: one reading of the sensors at rest decides the branch.
-      const Vec3 sensed_position = s.position() + sampler.sensing_offset(rng);
-      const Vec3 sensed_force = sampler.force_error(rng).apply(s.force);
+      const ReadingErrors reading = errors.reading(node_id);
+      const Vec3 sensed_position = s.position() + reading.sensing_offset;
+      const Vec3 sensed_force = reading.force.apply(s.force);
       mo.branch = choose_branch(node, sensed_position, sensed_force);
       if (mo.branch < 0) out.no_branch = true;
       node_id = mo.branch < 0 ? -1 : node.branches[static_cast<std::size_t>(mo.branch)].first;

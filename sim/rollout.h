@@ -16,6 +16,7 @@
 #include "controllers/error_model.h"
 #include "controllers/termination.h"
 #include "models/loaded_task.h"
+#include "sim/error_source.h"
 #include "sim/mjcf_export.h"
 
 namespace cmt {
@@ -188,9 +189,6 @@ class RolloutScene {
   double servo_damping_si_ = 0;    // N s / m
 };
 
-// Samples a start point in a region: uniform over it; in extreme mode mostly its vertices and boundary
-// (kExtremeBoundaryFraction: half of those at a vertex, half uniform on the boundary edges).
-Vec3 sample_region(const Region& region, SampleMode mode, Rng& rng);
 double distance_to_region(const Vec3& p, const Region& region);
 
 class RolloutRunner {
@@ -206,6 +204,9 @@ class RolloutRunner {
   // rollout's stream) and the first branch whose test passes runs (choose_branch); decision-free strategies
   // draw nothing extra.
   RolloutOutcome run(const Strategy& strategy, std::uint64_t seed, int index);
+  // The same rollout with its errors from `errors` (SampledErrors over rollout_stream(seed, index) is what
+  // the call above uses; ScriptedErrors replays an error vector). `index` only labels the outcome.
+  RolloutOutcome run(const Strategy& strategy, ErrorSource& errors, int index);
 
   // Calibration and tests: puts the robot at rest at `position` (task units) and runs `motion` without
   // errors for `duration` seconds (no termination rules), calling `observer` after every step.

@@ -1,6 +1,8 @@
 #include "experiments/cli/cli_output.h"
 
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "experiments/common/json_text.h"
 
@@ -23,6 +25,14 @@ int report_bad_input(const std::string& message, bool json, const std::string& f
     print_json({{"error", error}, {"exit_status", kExitBadInput}});
   }
   return kExitBadInput;
+}
+
+std::string read_task_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw TaskError(path, "", "cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
 }
 
 }  // namespace cmt

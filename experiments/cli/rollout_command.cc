@@ -7,12 +7,14 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
 #include "experiments/cli/rollout_cli.h"
 #include "models/task_error.h"
+#include "sim/error_vector.h"
 #include "sim/rollout.h"
 
 namespace cmt {
@@ -160,11 +162,31 @@ void draw_progress(int done, int total, std::chrono::steady_clock::time_point st
   std::fflush(stderr);
 }
 
+// One rollout under an error vector (sim/error_vector.h); a bad vector is an input error (exit status 2).
+RolloutOutcome run_error_vector(std::shared_ptr<const RolloutScene> scene, const Strategy& strategy,
+                                const std::string& text) {
+  const Task& task = scene->task().task;
+  const bool position = scene->options().form == ControllerForm::kPosition;
+  std::vector<double> vector;
+  std::optional<ErrorVectorLayout> layout;
+  try {
+    vector = parse_error_vector(text);
+    layout.emplace(task, strategy,
+                   shape_of_vector(task, strategy, static_cast<int>(vector.size()), position,
+                                   scene->options().damper_speed_per_scale));
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--errors", e.what());
+  }
+  ScriptedErrors errors(task, *layout, std::move(vector));
+  RolloutRunner runner(std::move(scene));
+  return runner.run(strategy, errors, 0);
+}
+
 }  // namespace
 
 void add_rollout_command(CLI::App& app, CommandState& state) {
   struct Options {
-    std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories;
+    std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories, errors;
     int n = 100;
     std::uint64_t seed = 1;
     int threads = 0;
@@ -182,8 +204,12 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--csv", o->csv, "also write one CSV row per rollout and motion to this file");
   cmd->add_option("--trajectories", o->trajectories,
                   "also record trajectories (every 10 steps) to this CSV file");
+  cmd->add_option("--errors", o->errors,
+                  "run one rollout under this error vector (comma-separated numbers in [0, 1], as `cmt "
+                  "falsify` prints them; docs/falsify.md) instead of sampled errors");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
+    if (!o->errors.empty()) o->n = 1;
     check_rollout_sampling_options(o->n, o->threads);
     const auto task = load_task(o->task);
     const Strategy* strategy = &task->task.strategy_named(o->strategy);
@@ -207,14 +233,15 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
     const bool bar = isatty(STDERR_FILENO);
     if (bar) progress = [&](int done) { draw_progress(done, o->n, start); };
     const std::vector<RolloutOutcome> results =
-        run_rollouts(scene, *strategy, o->n, o->seed, threads, progress);
+        o->errors.empty() ? run_rollouts(scene, *strategy, o->n, o->seed, threads, progress)
+                          : std::vector<RolloutOutcome>{run_error_vector(scene, *strategy, o->errors)};
     if (bar) std::fprintf(stderr, "\n");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     if (!o->csv.empty()) write_csv(o->csv, *task, results);
     if (!o->trajectories.empty()) write_trajectories(o->trajectories, results);
-    const nlohmann::json j =
-        rollouts_json({*task, *scene, *strategy, options, o->seed, threads, seconds}, results);
+    nlohmann::json j = rollouts_json({*task, *scene, *strategy, options, o->seed, threads, seconds}, results);
+    if (!o->errors.empty()) j["errors"] = o->errors;
     const int n = o->n, successes = j["successes"], unstable = j["unstable"];
     if (state.json) {
       print_json(j);

@@ -27,15 +27,6 @@ std::string point(const Vec3& p) {
   return os.str();
 }
 
-// The task file's text; a missing file is bad input naming it (like load_task).
-std::string read_task_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw TaskError(path, "", "cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 void print_summary(std::ostream& os, const ValidationResult& r) {
   os << r.task << " / " << r.strategy << ": verifier says "
      << (r.prediction.reliable ? "reliable" : "NOT reliable") << "; " << r.successes << "/"

@@ -162,8 +162,11 @@ void observe_rollout(const std::vector<VerifyStep>& steps, const RolloutOutcome&
 // From result->prediction, result->rollouts and result->options (seed, mode): successes, unstable, ends,
 // timeouts, unexpected_timeouts, unpredicted, outside, soundness, worst, contact_tolerance.
 void score_soundness(const LoadedTask& task, ValidationResult* result);
-// From result->prediction and result->ends: steps, coverage, coverage_radius (docs/validation.md).
-void score_coverage(const LoadedTask& task, ValidationResult* result);
+// From result->prediction and result->ends: steps, coverage, coverage_radius (docs/validation.md). With
+// `radii` (the steps of an earlier scoring), step k is measured at radii[k].radius instead of the radius from
+// its sample size, so that coverage of a superset of ends can be compared with it (it cannot decrease).
+void score_coverage(const LoadedTask& task, ValidationResult* result,
+                    const std::vector<StepValidation>& radii = {});
 // Does the result contradict the verifier (exit status 1): an outside end (main or search rollouts), a
 // soundness bug, or a stick/slide disagreement in the sticking table.
 bool contradicts_verifier(const ValidationResult& result);

@@ -38,8 +38,9 @@ std::vector<ReachedPiece> in_plane(std::vector<ReachedPiece> pieces) {
   return pieces;
 }
 
+// radius > 0: that radius instead of the one from the sample size.
 StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::vector<Vec3> ends,
-                          double contact_tolerance) {
+                          double contact_tolerance, double radius) {
   StepValidation s;
   s.motion = step.motion;
   s.ends = static_cast<int>(ends.size());
@@ -68,7 +69,7 @@ StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::v
     s.measure = "area";
     s.predicted = area;
     if (ends.empty()) return s;
-    s.radius = std::sqrt(kCoverageConstant * area / (std::numbers::pi * n));
+    s.radius = radius > 0 ? radius : std::sqrt(kCoverageConstant * area / (std::numbers::pi * n));
     const double h = std::sqrt(area / kCoverageSamples);
     long total = 0, hit = 0;
     for (const ReachedPiece& p : regions)
@@ -82,7 +83,7 @@ StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::v
     s.measure = "length";
     s.predicted = length;
     if (ends.empty()) return s;
-    s.radius = kCoverageConstant * length / (2 * n);
+    s.radius = radius > 0 ? radius : kCoverageConstant * length / (2 * n);
     const double h = length / kCoverageSamples;
     long total = 0, hit = 0;
     for (const ReachedPiece& p : segments) {
@@ -111,7 +112,7 @@ StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::v
 
 }  // namespace
 
-void score_coverage(const LoadedTask& task, ValidationResult* r) {
+void score_coverage(const LoadedTask& task, ValidationResult* r, const std::vector<StepValidation>& radii) {
   const std::vector<VerifyStep>& steps = r->prediction.steps;
   r->steps.clear();
   for (std::size_t mi = 0; mi < steps.size(); ++mi) {
@@ -122,7 +123,8 @@ void score_coverage(const LoadedTask& task, ValidationResult* r) {
         ends.push_back(e.end);
         outside += !e.inside;
       }
-    StepValidation s = cover_step(task, steps[mi], ends, r->contact_tolerance);
+    const double radius = mi < radii.size() ? radii[mi].radius : 0;
+    StepValidation s = cover_step(task, steps[mi], ends, r->contact_tolerance, radius);
     s.outside = outside;
     r->steps.push_back(s);
   }

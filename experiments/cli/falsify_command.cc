@@ -1,0 +1,90 @@
+// `cmt falsify TASK --strategy NAME [--budget N] [--coverage-budget N] [--random N] [--seed S] [--threads T]
+// [--mode uniform|extreme] [--controller FORM] [--switches K] --json`: adversarial rollouts, a search over
+// the bounded errors for motion ends outside the verifier's prediction and for the predicted pieces random
+// errors never reach (experiments/falsify/falsify.h, docs/falsify.md). Exit 0 when nothing is outside, 1 when
+// the search (or the random baseline) found a soundness bug, 2 on bad input.
+#include <iostream>
+#include <thread>
+
+#include "experiments/cli/cli_output.h"
+#include "experiments/cli/command.h"
+#include "experiments/common/json_text.h"
+#include "experiments/falsify/falsify.h"
+
+namespace cmt {
+namespace {
+
+void print_summary(std::ostream& os, const FalsifyResult& r) {
+  os << r.task << " / " << r.strategy << ": verifier says "
+     << (r.prediction.reliable ? "reliable" : "NOT reliable") << "; " << r.rollouts << " search rollouts in "
+     << r.searches << " searches (error vector of " << r.dimension << "), " << r.options.random
+     << " random\n";
+  for (std::size_t k = 0; k < r.best_signed_distance.size(); ++k)
+    os << "  " << r.prediction.steps[k].motion << ": best signed distance " << r.best_signed_distance[k]
+       << "\n";
+  os << "  coverage " << r.coverage_before << " (random) -> " << r.coverage_after << " (all rollouts)\n";
+  int unreached = 0;
+  for (const PieceCoverage& pc : r.pieces) unreached += pc.reached_by.empty();
+  os << "  " << r.pieces.size() - unreached << " of " << r.pieces.size() << " predicted pieces reached\n";
+  for (const FalsifyFinding& f : r.findings)
+    os << "  SOUNDNESS BUG (" << f.how
+       << "): " << (f.motion.empty() ? "failed under a reliable verdict" : f.motion) << " at distance "
+       << f.distance << "\n    " << f.replay << "\n";
+}
+
+}  // namespace
+
+void add_falsify_command(CLI::App& app, CommandState& state) {
+  struct Options {
+    std::string task, strategy, mode = "extreme", controller = "impedance";
+    FalsifyOptions falsify;
+    int threads = 0;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("falsify",
+                                 "Search the bounded errors for ends outside the prediction and for "
+                                 "unreached predicted pieces");
+  cmd->add_option("TASK", o->task, "task YAML file")->required();
+  cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
+  cmd->add_option("--budget", o->falsify.budget, "falsification search rollouts")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--coverage-budget", o->falsify.coverage_budget,
+                  "coverage search rollouts, shared among the predicted pieces no rollout reached")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--random", o->falsify.random, "random rollouts first (the baseline coverage)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--mode", o->mode, "error sampling of the random rollouts")
+      ->check(CLI::IsMember({"uniform", "extreme"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->falsify.seed, "master seed of every draw")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "threads (0: all cores); results do not depend on it")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--controller", o->controller,
+                  "controller form: impedance (default; the verifier's model), admittance or position")
+      ->check(CLI::IsMember({"admittance", "impedance", "position"}))
+      ->capture_default_str();
+  cmd->add_option("--switches", o->falsify.switches, "velocity-error switches per motion in the error vector")
+      ->check(CLI::Range(0, 50))
+      ->capture_default_str();
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([o, &state] {
+    const std::string text = read_task_text(o->task);
+    const auto task = load_task_from_string(text, o->task);
+    FalsifyOptions options = o->falsify;
+    options.threads =
+        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    options.mode = *parse_sample_mode(o->mode);
+    options.form = *parse_controller_form(o->controller);
+    const FalsifyResult r = run_falsify(task, text, o->strategy, options);
+    if (state.json)
+      std::cout << json_text(falsify_json(*task, r), 2) << "\n";
+    else
+      print_summary(std::cout, r);
+    state.exit_status = r.findings.empty() ? kExitSuccess : kExitFailureFound;
+  });
+}
+
+}  // namespace cmt

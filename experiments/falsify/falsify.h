@@ -1,0 +1,99 @@
+// Adversarial rollouts (docs/falsify.md): instead of sampling the bounded errors at random, search them.
+// A rollout's errors are a vector in [0, 1]^n (sim/error_vector.h); the cross-entropy method
+// (cross_entropy.h) chooses vectors
+//   - to falsify: maximize the signed distance of a motion end from its predicted termination set
+//     (robustness.h); an end farther out than the contact tolerance is a soundness bug, reported with the
+//     `cmt rollout --errors` command that replays it; under a "reliable" verdict a failed rollout is one too;
+//   - to cover: for each predicted termination piece that no random or falsification rollout ended in,
+//     minimize the distance of that motion's end from the piece; the pieces still unreached after the budget
+//     are listed (verifier looseness or a gap in the search, docs/falsify.md "Coverage").
+// Coverage is scored as `cmt validate` scores it (validation_coverage.cc), before (random rollouts only) and
+// after (every rollout). Every draw comes from the seed; results are the same for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/falsify/cross_entropy.h"
+#include "experiments/validation/validation.h"
+#include "sim/error_vector.h"
+
+namespace cmt {
+
+// Pieces targeted by the coverage search, largest first; the rest are listed as not searched.
+inline constexpr int kMaxCoverageTargets = 12;
+
+struct FalsifyOptions {
+  int budget = 400;           // falsification search rollouts
+  int coverage_budget = 400;  // coverage search rollouts, shared among the unreached pieces
+  int random = 100;           // random rollouts first (the baseline coverage), sampled in `mode`
+  SampleMode mode = SampleMode::kExtreme;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  ControllerForm form = ControllerForm::kImpedance;  // as `cmt validate` (verifier_model.h)
+  int switches = 3;                                  // K velocity-error switches per motion
+  CrossEntropyOptions search;
+};
+
+// One end found outside (or a failed rollout under a reliable verdict).
+struct FalsifyFinding {
+  std::string how;     // "falsify", "coverage" or "random"
+  std::string motion;  // the motion whose end is outside ("" for a failure at the goal)
+  int step = -1;       // its prediction step
+  Vec3 end = Vec3::Zero();
+  double distance = 0;         // outside its predicted set (task units)
+  std::vector<double> errors;  // the error vector (empty for a random rollout: replay by seed)
+  std::string replay;
+};
+
+// A predicted termination piece and whether some rollout ended in it.
+struct PieceCoverage {
+  int step = 0;
+  std::string motion;
+  ReachedPiece piece;
+  double measure = 0;      // area, length or 0 for a point
+  std::string reached_by;  // "random", "falsify", "coverage" or "" (unreached)
+  bool searched = false;   // the coverage search targeted it
+  double closest = 0;      // the nearest end's distance from it (task units)
+  int rollouts = 0;        // coverage-search rollouts spent on it
+};
+
+struct FalsifyResult {
+  std::string task, strategy;
+  FalsifyOptions options;
+  VerifyResult prediction;
+  ErrorVectorShape shape;
+  int dimension = 0;  // error vector length
+  int searches = 0;   // cross-entropy searches (restarts included), both phases
+  int rollouts = 0;   // search rollouts, both phases (the random ones not included)
+  int unstable = 0;   // search rollouts that became unstable (scored as nothing)
+  // Per prediction step: the largest signed distance any falsification rollout reached (> 0: outside).
+  std::vector<double> best_signed_distance;
+  std::vector<double> best_errors;       // the falsification search's best vector
+  std::vector<FalsifyFinding> findings;  // soundness bugs, farthest first (at most kMaxWorstEnds)
+  int outside = 0;                       // ends outside, all phases
+  double coverage_before = 0, coverage_after = 0;
+  double coverage_radius = 0;  // the random baseline's (both are measured at it)
+  std::vector<PieceCoverage> pieces;
+  double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0;
+};
+
+// `task_yaml` is the text `task` was loaded from (the verifier runs on its widened model for the controller
+// form, as in run_validation).
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
+                          const std::string& strategy, const FalsifyOptions& options);
+// The same against a given prediction (tests: a deliberately shrunk one).
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
+                          const VerifyResult& prediction, const FalsifyOptions& options);
+
+// `cmt rollout TASK --strategy S --errors V [--controller F]`.
+std::string error_replay_command(const LoadedTask& task, const std::string& strategy,
+                                 const std::vector<double>& errors, ControllerForm form);
+
+// The `cmt falsify --json` object (docs/falsify.md).
+nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& result);
+
+}  // namespace cmt

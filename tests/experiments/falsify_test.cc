@@ -1,0 +1,160 @@
+// Adversarial rollouts (experiments/falsify/): the cross-entropy method on known functions, and the search
+// against a deliberately shrunk prediction, where it must find ends outside that random sampling at the same
+// budget mostly misses (docs/falsify.md "Checking the search").
+#include "experiments/falsify/falsify.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "experiments/falsify/robustness.h"
+#include "verifier/verify.h"
+
+namespace cmt {
+namespace {
+
+std::string builtin_path(const std::string& name) {
+  return (std::filesystem::path(CMT_SOURCE_DIR) / "models" / "tasks" / (name + ".yaml")).string();
+}
+
+// -|x - target|^2 over a batch.
+BatchScore quadratic(const std::vector<double>& target, int* calls = nullptr) {
+  return [target, calls](const std::vector<std::vector<double>>& xs) {
+    if (calls != nullptr) ++*calls;
+    std::vector<double> out;
+    for (const std::vector<double>& x : xs) {
+      double s = 0;
+      for (std::size_t k = 0; k < x.size(); ++k) s -= (x[k] - target[k]) * (x[k] - target[k]);
+      out.push_back(s);
+    }
+    return out;
+  };
+}
+
+TEST(CrossEntropy, FindsTheMaximumOfAQuadraticInsideTheBox) {
+  const std::vector<double> target = {0.2, 0.9, 0.5, 0.35, 0.7, 0.1};
+  const CrossEntropyResult r = cross_entropy_maximize(6, 800, 3, {}, quadratic(target));
+  EXPECT_EQ(r.evaluations, 800);
+  for (std::size_t k = 0; k < target.size(); ++k) EXPECT_NEAR(r.best.x[k], target[k], 0.03) << k;
+}
+
+TEST(CrossEntropy, ReachesTheBoxBoundaryWhereTheMaximumLiesBeyondIt) {
+  // The score grows without bound towards x = (1.5, -0.5): the best point is the box corner (1, 0).
+  const CrossEntropyResult r = cross_entropy_maximize(2, 400, 4, {}, quadratic({1.5, -0.5}));
+  EXPECT_EQ(r.best.x[0], 1.0);
+  EXPECT_EQ(r.best.x[1], 0.0);
+}
+
+TEST(CrossEntropy, IsDeterministicAndKeepsItsBudget) {
+  int calls = 0;
+  const CrossEntropyResult a =
+      cross_entropy_maximize(5, 75, 9, {}, quadratic({0.3, 0.3, 0.3, 0.3, 0.3}, &calls));
+  const CrossEntropyResult b = cross_entropy_maximize(5, 75, 9, {}, quadratic({0.3, 0.3, 0.3, 0.3, 0.3}));
+  EXPECT_EQ(a.evaluations, 75);
+  EXPECT_EQ(calls, 5);  // 4 generations of 16 and one of 11
+  EXPECT_EQ(a.best.x, b.best.x);
+  EXPECT_EQ(a.best.evaluation, b.best.evaluation);
+  const CrossEntropyResult c = cross_entropy_maximize(5, 75, 10, {}, quadratic({0.3, 0.3, 0.3, 0.3, 0.3}));
+  EXPECT_NE(a.best.x, c.best.x);
+}
+
+TEST(CrossEntropy, RestartsWhenASearchStallsAndStopsWhenTold) {
+  // A flat score never improves: a search's first generation sets its best, and stall_generations more
+  // without improvement end it.
+  const BatchScore flat = [](const std::vector<std::vector<double>>& xs) {
+    return std::vector<double>(xs.size(), 0);
+  };
+  CrossEntropyOptions o;
+  o.stall_generations = 2;
+  const CrossEntropyResult r = cross_entropy_maximize(3, 16 * 7, 1, o, flat);
+  EXPECT_EQ(r.searches, 3);  // generations 0-2, 3-5, 6
+  int generations = 0;
+  const CrossEntropyResult s = cross_entropy_maximize(
+      3, 1000, 1, o, flat, [&](const std::vector<CrossEntropyCandidate>&) { return ++generations == 3; });
+  EXPECT_EQ(s.evaluations, 48);
+}
+
+TEST(CrossEntropy, RefusesAnEmptyProblem) {
+  EXPECT_THROW(cross_entropy_maximize(0, 10, 1, {}, quadratic({})), std::invalid_argument);
+  EXPECT_THROW(cross_entropy_maximize(2, 0, 1, {}, quadratic({0, 0})), std::invalid_argument);
+}
+
+TEST(SignedDistance, IsTheDepthInsideAndTheDistanceOutside) {
+  const auto task = load_task(builtin_path("two_blocks"));
+  VerifyResult prediction;
+  VerifyStep step{"m", ReachedSet(task->cspace)};
+  const int e23 = task->cspace.nearest_atom(Vec3(-1.5, 0, 0), 1e-9);
+  ASSERT_GE(e23, 0);
+  step.termination.add_edge_interval(e23, 0.25, 0.75);  // y in [-2, 2] along the 8-long edge
+  prediction.steps.push_back(step);
+  const std::vector<PredictedStep> steps = predicted_steps(prediction);
+  EXPECT_NEAR(signed_distance(task->cspace, steps[0], Vec3(-1.5, 0, 0), 1e-6), -2, 1e-12);
+  EXPECT_NEAR(signed_distance(task->cspace, steps[0], Vec3(-1.5, 1.5, 0), 1e-6), -0.5, 1e-12);
+  EXPECT_NEAR(signed_distance(task->cspace, steps[0], Vec3(-1.5, 2.5, 0), 1e-6), 0.5, 1e-12);
+}
+
+// two_blocks `slide` (a damper off block B's top into the gap, sliding to block A's wall): the verifier
+// predicts the whole concave edge e23, y in [-4, 4]. The prediction cut at y <= 1 misses ends that drift
+// beyond y = 1, which random errors produce in about 1 rollout of 7 (uniform) or 6 (extreme) and the search
+// seeks (about 3 in 8 at this budget).
+TEST(Falsify, FindsEndsOutsideAShrunkPredictionThatRandomSamplingMostlyMisses) {
+  const auto task = load_task(builtin_path("two_blocks"));
+  const Strategy& strategy = task->task.strategy_named("slide");
+  VerifyResult prediction = verify_strategy(*task, strategy);
+  ASSERT_TRUE(prediction.reliable);
+  AxisBox keep{Vec3(-10, -10, -10), Vec3(10, 1, 10)};
+  prediction.steps[0].termination = prediction.steps[0].termination.within_box(keep);
+  FalsifyOptions o;
+  o.threads = 2;
+  o.coverage_budget = 0;
+  o.seed = 5;
+  const int budget = 64;
+  FalsifyOptions searched = o, uniform = o;
+  searched.budget = budget;
+  searched.random = 0;
+  uniform.budget = 0;
+  uniform.random = budget;
+  uniform.mode = SampleMode::kUniform;
+  FalsifyOptions extreme = uniform;
+  extreme.mode = SampleMode::kExtreme;
+  const FalsifyResult s = run_falsify(task, strategy, prediction, searched);
+  const FalsifyResult u = run_falsify(task, strategy, prediction, uniform);
+  const FalsifyResult e = run_falsify(task, strategy, prediction, extreme);
+  EXPECT_EQ(s.rollouts, budget);
+  EXPECT_GE(s.outside, 10);
+  EXPECT_GT(s.outside, 2 * u.outside) << "search " << s.outside << ", uniform random " << u.outside;
+  EXPECT_GT(s.outside, e.outside) << "search " << s.outside << ", extreme random " << e.outside;
+  ASSERT_FALSE(s.findings.empty());
+  EXPECT_EQ(s.findings.front().how, "falsify");
+  EXPECT_GT(s.findings.front().end.y(), 1);
+  EXPECT_GT(s.best_signed_distance[0], 0);
+  // The finding replays from its vector alone.
+  const ErrorVectorLayout layout(task->task, strategy, s.shape);
+  ScriptedErrors errors(task->task, layout, s.findings.front().errors);
+  SimOptions sim;
+  sim.form = o.form;
+  RolloutRunner runner(RolloutScene::build(task, sim));
+  EXPECT_EQ(runner.run(strategy, errors, 0).motions.front().end, s.findings.front().end);
+}
+
+TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
+  const auto task = load_task(builtin_path("two_blocks"));
+  const Strategy& strategy = task->task.strategy_named("slide");
+  const VerifyResult prediction = verify_strategy(*task, strategy);
+  FalsifyOptions o;
+  o.budget = 20;
+  o.coverage_budget = 0;
+  o.random = 4;
+  o.threads = 1;
+  const FalsifyResult one = run_falsify(task, strategy, prediction, o);
+  o.threads = 2;
+  const FalsifyResult two = run_falsify(task, strategy, prediction, o);
+  EXPECT_EQ(one.best_errors, two.best_errors);
+  EXPECT_EQ(one.best_signed_distance, two.best_signed_distance);
+  EXPECT_EQ(one.coverage_after, two.coverage_after);
+}
+
+}  // namespace
+}  // namespace cmt
