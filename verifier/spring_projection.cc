@@ -31,7 +31,7 @@ using namespace fp;
 class SpringProjector {
  public:
   SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model,
-                  double stop_relative_speed)
+                  double stop_relative_speed, double contact_lift)
       : c_(lt.cspace),
         u_(lt.task.uncertainty),
         p_(p),
@@ -41,6 +41,7 @@ class SpringProjector {
         tan_v_(std::tan(u_.theta_v)),
         start_(start),
         kappa_(std::max(0.0, stop_relative_speed)),
+        lift_(std::max(0.0, contact_lift)),
         reached_(c_),
         r_(reached_.impl()) {
     if (model_ == SpringModel::kVelocity) {
@@ -590,6 +591,9 @@ class SpringProjector {
       if (iv.t0 <= kEdgeParamSlack) add_vertex(e.vertex_a - nf_ - ne_);
       if (iv.t1 >= 1 - kEdgeParamSlack) add_vertex(e.vertex_b - nf_ - ne_);
     }
+    // Contact lift (docs/verifier.md "Contact lift"): a robot sliding on one face into this concave edge may
+    // meet the other face up to lift_ above the edge, whatever the edge's class; there it may stick or slide.
+    if (lift_ > 0 && e.shape == EdgeShape::kConcave && e.faces.size() == 2) add_lift_strips(ei, ivs);
     const Vec3 d = e.b - e.a;
     const double len = d.norm();
     const double tp = (p_ - e.a).dot(d) / (len * len);
@@ -634,6 +638,89 @@ class SpringProjector {
       std::vector<Point3> src = {exact(a)};
       if (iv.t1 > iv.t0) src.push_back(exact(b));
       fly(src, -1);
+    }
+  }
+
+  // In-face unit normal of edge e on face fi, pointing from the edge into the face.
+  Vec3 into_face(const Edge& e, int fi) const {
+    const Face& f = c_.faces()[fi];
+    Vec3 m = f.normal.cross(e.b - e.a).normalized();
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& q : f.polygon) centroid += q / static_cast<double>(f.polygon.size());
+    if ((centroid - e.a).dot(m) < 0) m = -m;
+    return m;
+  }
+
+  // A robot sliding on face g may approach edge e at some point of seg[a, b]: not every admissible pull
+  // points away from the edge. It surely points away at x when (p − x̂) . m > sin(theta_v) |p − x̂| for every
+  // sensed x̂, i.e. (p − x) . m − eps_s − sin(theta_v) (|p − x| + eps_s) > 0 (m into g): then the sliding
+  // velocity (the tangential part of the imparted force) has a positive m component. That function is
+  // concave along the segment, so its least value is at an end. Decided with a margin that favours "may".
+  bool may_approach(const Edge& e, int g, const Vec3& a, const Vec3& b) const {
+    if (!slides_on(g)) return false;
+    // Not all of the interval inside g's no-slide disk: there every admissible pull lifts the robot off g,
+    // so it arrives in flight (the flights cover that), not sliding on g.
+    const double r = no_slide_radius(g) - kDecisionMargin * c_.scale();
+    if (r > 0 && max_dist(g, {a, b}) < r) return false;
+    const Vec3 m = into_face(e, g);
+    const double sv = std::sin(u_.theta_v), margin = kDecisionMargin * c_.scale();
+    auto away = [&](const Vec3& x) {
+      return (p_ - x).dot(m) - u_.eps_s - sv * ((p_ - x).norm() + u_.eps_s) - margin;
+    };
+    return std::min(away(a), away(b)) <= 0;
+  }
+
+  // Something reached on face g lies outside its strong configurations (where the robot sticks, Alg 4.4)
+  // and outside its no-slide disk (where the pull lifts it off): the robot may slide on g, and a lift strip
+  // needs slipping. (The disk is tested by distance, not by its polygon clipped to the face, so that
+  // reached segments on the face's boundary count as inside it.)
+  bool slides_on(int g) const {
+    const double r = no_slide_radius(g) - kDecisionMargin * c_.scale();
+    auto must_leave = [&](const Points2& l) { return r > 0 && max_dist(g, lifted(g, l)) < r; };
+    const FaceSet& fs = r_.faces[g];
+    if (!fs.region.is_empty()) {
+      PolygonSet2 sliding = fs.region;
+      sliding.difference(strong_[g]);
+      for (const Points2& piece : convex_pieces(sliding))
+        if (!must_leave(piece)) return true;
+    }
+    for (const Segment2& sg : fs.segments) {
+      const Points2 l = {sg.source(), sg.target()};
+      if (!sticks_strongly(g, l) && !must_leave(l)) return true;
+    }
+    for (const Point2& q : fs.points)
+      if (!sticks_strongly(g, {q}) && !must_leave({q})) return true;
+    return false;
+  }
+
+  // Contact lift at a concave edge (the dampers' add_lift_bands, forward_projection.cc): sliding on face g
+  // toward the edge, the robot may be up to lift_ off g (MuJoCo's slip hops; the bound
+  // experiments/validation/verifier_model.h rollout_contact_lift holds for springs too, whose speed is at
+  // most the top speed). Its velocity while off g is the model's, so it meets the other face f above the
+  // reached edge interval [a, b]: f gets the strip [a, b] + [0, lift_] d (d in f, away from the edge),
+  // clipped to f, as an entry: where f's strong configurations hold it, it sticks; elsewhere it may slide.
+  void add_lift_strips(int ei, const std::vector<EdgeInterval>& ivs) {
+    const Edge& e = c_.edges()[ei];
+    const Vec3 dir = e.b - e.a;
+    for (int f : e.faces) {
+      int g = -1;
+      for (int h : e.faces)
+        if (h != f) g = h;
+      if (g < 0) continue;
+      const Vec3 d = into_face(e, f);
+      const FaceChart& chart = r_.charts[f];
+      for (const EdgeInterval& iv : ivs) {
+        const Vec3 a = e.a + iv.t0 * dir, b = e.a + iv.t1 * dir;
+        if (!may_approach(e, g, a, b)) continue;
+        const Points2 rect =
+            clip(convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
+                              chart.project(Vec3(a + lift_ * d))}),
+                 r_.face_polygon[f]);
+        if (rect.size() >= 3)
+          add_entry_region(f, PolygonSet2(to_polygon(rect)));
+        else if (!rect.empty())
+          add_entry_lower(f, rect);
+      }
     }
   }
 
@@ -705,6 +792,7 @@ class SpringProjector {
   VelocitySpring vm_;        // the velocity model's shared data (kVelocity only)
   const ReachedSet& start_;  // alive during run() (forward_project_spring)
   double kappa_;             // the stop rule's relative speed
+  double lift_;              // contact lift (task units; 0: first-order contact)
   ReachedSet reached_;
   ReachedSet::Impl& r_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
@@ -744,8 +832,8 @@ const char* spring_model_name(SpringModel m) {
 }
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
-                                        SpringModel model, double stop_relative_speed) {
-  return SpringProjector(task, start, p, model, stop_relative_speed).run();
+                                        SpringModel model, double stop_relative_speed, double contact_lift) {
+  return SpringProjector(task, start, p, model, stop_relative_speed, contact_lift).run();
 }
 
 }  // namespace cmt

@@ -85,8 +85,11 @@ std::vector<HalfSpace> velocity_invariant_half_spaces(const CSpace& cspace, cons
 
 // `stop_relative_speed` (kappa): see slow_stop_radius; used by the velocity model only (the via-point model
 // bounds the position form, whose stop rule is the AML force rule while via points are issued).
+// `contact_lift` (>= 0, task units, VerifyOptions::contact_lift): a robot sliding on one face of a reached
+// concave edge toward it may be up to this far off that face when it meets the other one (docs/verifier.md
+// "Contact lift"); the other face gets lift strips over the reached edge intervals, as for dampers.
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model = SpringModel::kViaPoint,
-                                        double stop_relative_speed = 0);
+                                        double stop_relative_speed = 0, double contact_lift = 0);
 
 }  // namespace cmt

@@ -16,8 +16,8 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
                     const ReachedSet& start, const VerifyOptions& options) {
   VerifyStep step{motion.name, ReachedSet(lt.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
-    SpringProjection p =
-        forward_project_spring(lt, start, motion.target, options.spring_model, options.stop_relative_speed);
+    SpringProjection p = forward_project_spring(lt, start, motion.target, options.spring_model,
+                                                options.stop_relative_speed, options.contact_lift);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.slide_forever = std::move(p.slide_forever);

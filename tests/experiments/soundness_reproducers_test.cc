@@ -103,6 +103,31 @@ TEST(SoundnessReproducers, ContactLiftCoversHopsIntoAWall) {
   EXPECT_LE(highest, r.prediction.contact_lift);  // and within the bound
 }
 
+// Class B for springs (campaign seed 3, task 10): a spring slides along the floor into a wall at mu .72 and
+// some rollouts hop onto the wall above the edge and stick there, so the goal (the floor) is missed. Physics
+// says unreliable (rollouts fail); every end must lie in the prediction, the wall ends within the lift bound.
+TEST(SoundnessReproducers, SpringLiftStripsCoverHopsIntoAWall) {
+  const ValidationResult r = validate_file("campaign3_10.yaml", "s", 150, 2092789425003139047ULL);
+  EXPECT_FALSE(r.prediction.reliable);
+  expect_sound(r);
+  EXPECT_LT(r.successes, static_cast<int>(r.rollouts.size()));  // some rollouts stick on the wall
+}
+
+// Class B for springs (campaign seed 3, task 430, inches): the robot hops up to .0098 in off the floor and
+// more than half the extreme rollouts stick on the wall f11 above the floor edge, the only prediction under
+// first-order contact. Every end must lie in the prediction, and the wall ends within the lift bound.
+TEST(SoundnessReproducers, SpringLiftStripsHoldMostEndsAboveTheEdge) {
+  const ValidationResult r = validate_file("campaign3_430.yaml", "s", 150, 2092789425003138627ULL);
+  expect_sound(r);
+  const double floor_z = -1.53595007053;
+  int above = 0;
+  for (const ObservedEnd& e : r.ends) {
+    above += e.end.z() - floor_z > r.contact_tolerance;
+    EXPECT_LE(e.end.z() - floor_z, r.prediction.contact_lift);
+  }
+  EXPECT_GT(above, 10);  // the hops are real: many ends lie on the wall, above the edge
+}
+
 // Generated tasks are reproducible and load.
 TEST(SoundnessCampaign, TasksAreSeededAndLoad) {
   for (int i = 0; i < 40; ++i) {
