@@ -280,8 +280,12 @@ std::string error_replay_command(const LoadedTask& task, const std::string& stra
   return os.str();
 }
 
-FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
-                          const VerifyResult& prediction, const FalsifyOptions& options) {
+namespace {
+
+// run_falsify with the random rollouts run here (`baseline` null) or given.
+FalsifyResult falsify_with(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
+                           const VerifyResult& prediction, const FalsifyOptions& options,
+                           const std::vector<RolloutOutcome>* baseline) {
   FalsifyResult r;
   r.task = task->task.name;
   r.strategy = strategy.name;
@@ -304,11 +308,16 @@ FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy
   r.dimension = c.layout.size();
 
   auto start = std::chrono::steady_clock::now();
-  std::vector<RolloutOutcome> random =
-      options.random > 0 ? run_rollouts(c.scene, strategy, options.random, options.seed, r.options.threads)
-                         : std::vector<RolloutOutcome>{};
-  for (const RolloutOutcome& ro : random) collect_findings(c, ro, observe(c, ro), "random", {}, &r);
-  r.random_seconds = seconds_since(start);
+  std::vector<RolloutOutcome> own;
+  if (baseline == nullptr) {
+    if (options.random > 0)
+      own = run_rollouts(c.scene, strategy, options.random, options.seed, r.options.threads);
+    for (const RolloutOutcome& ro : own) collect_findings(c, ro, observe(c, ro), "random", {}, &r);
+  } else {
+    r.options.random = static_cast<int>(baseline->size());  // already scored by the caller: no findings
+  }
+  const std::vector<RolloutOutcome>& random = baseline == nullptr ? own : *baseline;
+  r.random_seconds = baseline == nullptr ? seconds_since(start) : 0;
 
   start = std::chrono::steady_clock::now();
   std::vector<RolloutOutcome> searched;
@@ -335,6 +344,19 @@ FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy
                    [](const FalsifyFinding& a, const FalsifyFinding& b) { return a.distance > b.distance; });
   if (r.findings.size() > static_cast<std::size_t>(kMaxWorstEnds)) r.findings.resize(kMaxWorstEnds);
   return r;
+}
+
+}  // namespace
+
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
+                          const VerifyResult& prediction, const FalsifyOptions& options) {
+  return falsify_with(std::move(task), strategy, prediction, options, nullptr);
+}
+
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
+                          const VerifyResult& prediction, const FalsifyOptions& options,
+                          const std::vector<RolloutOutcome>& baseline) {
+  return falsify_with(std::move(task), strategy, prediction, options, &baseline);
 }
 
 FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,

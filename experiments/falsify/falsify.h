@@ -88,6 +88,14 @@ FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::str
 // The same against a given prediction (tests: a deliberately shrunk one).
 FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
                           const VerifyResult& prediction, const FalsifyOptions& options);
+// The same with rollouts the caller already ran as the baseline, in place of options.random new ones (a
+// sweep unit: the validation's N rollouts, run_validation with options.seed, options.mode and options.form).
+// They play the random rollouts' part: coverage_before is theirs, the pieces they reach count as reached by
+// "random" and coverage_radius is theirs; their ends outside are NOT findings (nor counted in `outside`):
+// the validation scores them already. result.options.random is the baseline's size, random_seconds 0.
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
+                          const VerifyResult& prediction, const FalsifyOptions& options,
+                          const std::vector<RolloutOutcome>& baseline);
 
 // `cmt rollout TASK --strategy S --errors V [--controller F]`.
 std::string error_replay_command(const LoadedTask& task, const std::string& strategy,

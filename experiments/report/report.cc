@@ -157,6 +157,7 @@ class ReportBuilder {
       if (m.soundness_bug) notes.push_back("SOUNDNESS BUG: the verifier says reliable but a rollout failed");
       if (const std::string replay = counterexample_command(m.counterexample); !replay.empty())
         notes.push_back("counterexample, replay with: " + replay);
+      if (const std::string note = falsify_note(c); !note.empty()) notes.push_back(note);
       if (m.sticking.is_object())
         notes.push_back("sticking check: " + std::to_string(m.sticking.value("trials", 0)) + " trials, " +
                         std::to_string(m.sticking.value("disagreements", 0)) + " disagreements");

@@ -113,6 +113,21 @@ void md_table(std::ostream& md, const Table& t) {
   md << "\n";
 }
 
+// The adversarial search's table (report_table.h falsify_table), when some configuration has one.
+constexpr const char* kFalsifyTitle = "Adversarial rollouts";
+constexpr const char* kFalsifyIntro =
+    "Per unit with an adversarial search (cmt falsify against the unit's prediction, its N rollouts as the "
+    "random baseline; docs/falsify.md): search rollouts of both phases, the motion ends outside the "
+    "prediction the search found, the largest signed distance from each motion's predicted set the "
+    "falsification reached (> 0: outside), coverage before (the N rollouts) and after (every rollout), and "
+    "the predicted pieces no rollout ended in.";
+
+void md_falsify(std::ostream& md, const Table& t) {
+  if (t.rows.empty()) return;
+  md << "## " << kFalsifyTitle << "\n\n" << kFalsifyIntro << "\n\n";
+  md_table(md, t);
+}
+
 void md_section(std::ostream& md, const ConfigSection& s) {
   md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
   if (!s.view_page.empty()) md << "[3-D view](" << s.view_page << ")\n\n";
@@ -193,6 +208,20 @@ void html_details_table(std::ostream& h, const Table& t, std::size_t row) {
   h << "</table>\n";
 }
 
+void html_falsify(std::ostream& h, const Table& t) {
+  if (t.rows.empty()) return;
+  h << "<h2 id=\"falsify\">" << kFalsifyTitle << "</h2>\n<p>" << html_escape(kFalsifyIntro)
+    << "</p>\n<table class=\"falsify\">\n<tr>";
+  for (const std::string& head : t.headers) h << "<th>" << html_escape(head) << "</th>";
+  h << "</tr>\n";
+  for (const auto& row : t.rows) {
+    h << "<tr>";
+    for (const Cell& cell : row) h << "<td>" << html_cell(cell) << "</td>";
+    h << "</tr>\n";
+  }
+  h << "</table>\n";
+}
+
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
   const ConfigSection& s = c.sections[i];
   h << "<section class=\"config\" id=\"" << section_anchor(*s.row) << "\">\n<h3>Config " << s.row->config_id
@@ -249,6 +278,7 @@ std::string render_markdown(const ReportContent& c) {
   if (!c.runs.empty()) md << "\n";
   md << "## Configurations\n\n";
   md_table(md, c.table);
+  md_falsify(md, c.falsify);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -260,6 +290,7 @@ std::string render_html(const ReportContent& c) {
   html_summary(h, c);
   html_runs(h, c);
   html_overview(h, c.overview);
+  html_falsify(h, c.falsify);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

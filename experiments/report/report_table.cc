@@ -245,6 +245,8 @@ std::string counterexample_command(const nlohmann::json& counterexample) {
   return json_text(counterexample);
 }
 
+std::string verdict_text(const ConfigRow& row) { return verdict(row); }
+
 std::string section_anchor(const ConfigRow& row) { return "config-" + std::to_string(row.config_id); }
 
 bool is_false_alarm(const ConfigRow& row) {
@@ -256,8 +258,11 @@ bool is_false_alarm(const ConfigRow& row) {
 SummaryStats summarize(const std::vector<ConfigSection>& sections) {
   SummaryStats s;
   MinMean soundness, coverage;
+  double before = 0, after = 0;
+  int with_coverage = 0;
   for (const ConfigSection& section : sections) {
     const ConfigRow& c = *section.row;
+    count_falsify(c, s, &before, &after, &with_coverage);
     ++s.configs;
     ++(c.done() ? s.done : s.pending);
     count_verdict(c, s);
@@ -272,13 +277,17 @@ SummaryStats summarize(const std::vector<ConfigSection>& sections) {
   s.mean_soundness = soundness.mean();
   s.min_coverage = coverage.min();
   s.mean_coverage = coverage.mean();
+  if (with_coverage > 0) {
+    s.mean_coverage_before = before / with_coverage;
+    s.mean_coverage_after = after / with_coverage;
+  }
   return s;
 }
 
 std::vector<SummaryLine> summary_lines(const SummaryStats& s) {
   const auto fraction = [](double v) { return format_fixed(v, kFractionDecimals); };
   const auto seconds = [](double v) { return format_fixed(v, kSecondsDecimals) + " s"; };
-  return {
+  std::vector<SummaryLine> lines = {
       {"units", count_of(s.configs, "configuration") + ": " + std::to_string(s.done) + " done, " +
                     std::to_string(s.pending) + " pending"},
       {"verdicts", verdicts_text(s)},
@@ -294,6 +303,14 @@ std::vector<SummaryLine> summary_lines(const SummaryStats& s) {
       {"time",
        "verify " + seconds(s.verify_seconds) + ", rollouts " + seconds(s.rollout_seconds) + " (totals)"},
   };
+  if (s.falsified > 0)
+    lines.push_back(
+        {"adversarial rollouts",
+         count_of(s.falsified, "configuration") + " searched: " + std::to_string(s.falsify_rollouts) +
+             " search rollouts, " + std::to_string(s.falsify_outside) +
+             " motion ends outside the prediction found by the search; mean coverage " +
+             fraction(s.mean_coverage_before) + " before, " + fraction(s.mean_coverage_after) + " after"});
+  return lines;
 }
 
 ReportContent build_report_content(const ResultsDb& db, std::vector<ConfigSection> sections) {
@@ -306,6 +323,7 @@ ReportContent build_report_content(const ResultsDb& db, std::vector<ConfigSectio
   out.summary = summary_lines(out.stats);
   out.overview = overview_table(sections);
   out.table = full_table(sections);
+  out.falsify = falsify_table(sections);
   out.sections = std::move(sections);
   return out;
 }

@@ -59,6 +59,9 @@ struct SummaryStats {
   int false_alarms = 0;
   double verify_seconds = 0;   // sum over the configurations with a prediction
   double rollout_seconds = 0;  // sum over the done configurations
+  // The adversarial search (falsify_table.cc), over the done configurations that have one.
+  int falsified = 0, falsify_rollouts = 0, falsify_outside = 0;
+  double mean_coverage_before = kNoValue, mean_coverage_after = kNoValue;
 };
 
 struct SummaryLine {
@@ -73,6 +76,9 @@ struct ReportContent {
   std::vector<SummaryLine> summary;  // the stats in words
   Table overview;                    // the first page: key columns, a thumbnail and links per configuration
   Table table;                       // every column, one row per configuration
+  // "Adversarial rollouts": one row per configuration with an adversarial search (falsify_table.cc); no
+  // rows, no section.
+  Table falsify;
   std::vector<ConfigSection> sections;
 };
 
@@ -86,6 +92,25 @@ std::string counterexample_command(const nlohmann::json& counterexample);
 std::string section_anchor(const ConfigRow& row);
 // See SummaryStats::false_alarms.
 bool is_false_alarm(const ConfigRow& row);
+// The verdict column's text: "reliable", "NOT reliable", "verifier timed out" or "pending".
+std::string verdict_text(const ConfigRow& row);
+
+// ---- The adversarial search (falsify_table.cc; docs/falsify.md "In sweeps and the report") ----
+
+// The configuration's search (metrics.falsify) when it is done and has one, else nullptr.
+const nlohmann::json* falsify_data(const ConfigRow& row);
+// The "Adversarial rollouts" table: per configuration with a search, its task / strategy, verdict, search
+// rollouts, searches, ends outside found by the search, the best signed distance per motion, coverage
+// before -> after, pieces reached / total and the unreached pieces (step, motion, atom name, kind,
+// measure).
+Table falsify_table(const std::vector<ConfigSection>& sections);
+// The configuration's note on its search ("" without one): rollouts, ends outside, the farthest one's
+// replay command.
+std::string falsify_note(const ConfigRow& row);
+// Adds the search's numbers of a configuration to the summary counts (SummaryStats::falsified ...); the
+// means are finished by summarize.
+void count_falsify(const ConfigRow& row, SummaryStats& stats, double* sum_before, double* sum_after,
+                   int* with_coverage);
 
 SummaryStats summarize(const std::vector<ConfigSection>& sections);
 std::vector<SummaryLine> summary_lines(const SummaryStats& stats);

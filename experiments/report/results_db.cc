@@ -223,10 +223,13 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
     }
   }
   {
+    // `falsify` is a later addition (schema version 3): older databases ran no search.
+    const std::string falsify = has_column(db, "metrics", "falsify") ? "falsify" : "NULL";
     Statement s(db,
                 "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
                 "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
-                "rollout_seconds, verify_seconds FROM metrics",
+                "rollout_seconds, verify_seconds, " +
+                    falsify + " FROM metrics",
                 "metrics");
     while (s.step()) {
       const auto it = index.find(s.integer(0));
@@ -246,6 +249,9 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
       m.sticking = json_column(db, s, 12, config_key(it->first, "metrics", "sticking"));
       m.rollout_seconds = s.real(13);
       m.verify_seconds = s.real(14);
+      m.falsify = json_column(db, s, 15, config_key(it->first, "metrics", "falsify"));
+      if (!m.falsify.is_null() && !m.falsify.is_object())
+        throw TaskError(db.path(), config_key(it->first, "metrics", "falsify"), "not a JSON object");
       out.configs[it->second].metrics = std::move(m);
     }
   }

@@ -48,6 +48,9 @@ struct MetricsRow {
   nlohmann::json counterexample;  // null when NULL
   nlohmann::json sticking;  // experiments/validation/sticking_check.h sticking_check_json; null when NULL
   double rollout_seconds = 0, verify_seconds = 0;
+  // The adversarial search (docs/falsify.md "In sweeps and the report"): `cmt falsify --json`'s object
+  // without `threads`; null when NULL or the database predates the column (schema version < 3).
+  nlohmann::json falsify;
 };
 
 struct ConfigRow {

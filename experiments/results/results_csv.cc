@@ -1,8 +1,8 @@
 // ResultsStore::export_csv (docs/sweeps.md "CSV export"): runs.csv, configs.csv, predictions.csv,
 // rollouts.csv, metrics.csv (every column of each table, in table order) and summary.csv (one row per
 // finished unit: the configuration with one column per override parameter, the prediction's verdict and the
-// metrics, without the bulky JSON and YAML columns). RFC 4180 quoting; reals in shortest round-trip form;
-// NULL as an empty field.
+// metrics, without the bulky JSON and YAML columns; the adversarial search's budgets and headline numbers).
+// RFC 4180 quoting; reals in shortest round-trip form; NULL as an empty field.
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -74,7 +74,10 @@ constexpr const char* kSummaryResultColumns =
     "m.soundness, m.coverage, "
     "m.coverage_radius, m.contact_tolerance, m.soundness_bug, m.counterexample IS NOT NULL AS "
     "has_counterexample, "
-    "m.verify_seconds, m.rollout_seconds";
+    "m.verify_seconds, m.rollout_seconds, c.falsify_budget, c.falsify_coverage_budget, "
+    "json_extract(m.falsify, '$.rollouts') AS falsify_rollouts, json_extract(m.falsify, '$.outside') AS "
+    "falsify_outside, json_extract(m.falsify, '$.coverage_before') AS falsify_coverage_before, "
+    "json_extract(m.falsify, '$.coverage_after') AS falsify_coverage_after";
 
 void write_summary(SqliteDb& db, const std::filesystem::path& path) {
   const std::string from =

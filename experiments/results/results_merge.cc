@@ -46,7 +46,8 @@ MergeCounts merge_attached(SqliteDb& db) {
   db.exec(std::string("INSERT OR IGNORE INTO main.configs(") + s::kConfigColumns +
           ") SELECT (SELECT to_id FROM merge_run_map WHERE from_id = c.run_id), unit_key, task, task_file, "
           "task_yaml, strategy, params, n, seed, mode, 'pending', NULL, unit_index, sticking_trials, "
-          "counterexample_budget, controller FROM src.configs AS c ORDER BY c.config_id");
+          "counterexample_budget, controller, falsify_budget, falsify_coverage_budget FROM src.configs AS c "
+          "ORDER BY c.config_id");
   c.new_units = count(db, "SELECT count(*) FROM main.configs") - before;
   c.already_done =
       count(db,
@@ -81,7 +82,8 @@ MergeCounts ResultsStore::merge_from(const std::filesystem::path& other) {
     throw std::runtime_error(other.string() + ": no such results database");
   if (std::filesystem::equivalent(other, db_.path()))
     throw std::runtime_error(other.string() + ": cannot merge a results database into itself");
-  // Opening it as a store first checks (or, for a file that is not a database, rejects) its schema version.
+  // Opening it as a store first checks (or, for a file that is not a database, rejects) its schema version,
+  // migrating a version-2 file to version 3 in place.
   { ResultsStore check(other); }
   db_.prepare("ATTACH DATABASE ? AS src").bind(1, other.string()).run();
   try {

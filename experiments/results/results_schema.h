@@ -30,7 +30,9 @@ CREATE TABLE configs(
   unit_index INTEGER,               -- addition: position in the spec's expansion
   sticking_trials INTEGER,          -- addition
   counterexample_budget INTEGER,    -- addition
-  controller TEXT                   -- addition: impedance | admittance | position (cmt validate --controller)
+  controller TEXT,                  -- addition: impedance | admittance | position (cmt validate --controller)
+  falsify_budget INTEGER,           -- addition (v3): the adversarial search's budgets, 0 = no search
+  falsify_coverage_budget INTEGER   -- addition (v3)
 );
 CREATE TABLE predictions(
   config_id INTEGER PRIMARY KEY,
@@ -72,16 +74,26 @@ CREATE TABLE metrics(
   counterexample TEXT,
   sticking TEXT,
   rollout_seconds REAL,
-  verify_seconds REAL
+  verify_seconds REAL,
+  falsify TEXT                      -- addition (v3): the cmt falsify --json object (without threads) or NULL
 );
 CREATE INDEX configs_status ON configs(status);
 CREATE INDEX configs_task_strategy ON configs(task, strategy);
 )sql";
 
+// Version 2 -> 3 (ResultsStore migrates a version-2 file in place): the falsify columns. The units a
+// version-2 database holds ran no search: their budgets are 0.
+inline constexpr const char* kMigrate2To3 = R"sql(
+ALTER TABLE configs ADD COLUMN falsify_budget INTEGER;
+ALTER TABLE configs ADD COLUMN falsify_coverage_budget INTEGER;
+ALTER TABLE metrics ADD COLUMN falsify TEXT;
+UPDATE configs SET falsify_budget = 0, falsify_coverage_budget = 0;
+)sql";
+
 // Every column after the primary key config_id, in table order (merge copies them by name).
 inline constexpr const char* kConfigColumns =
     "run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, mode, status, finished, "
-    "unit_index, sticking_trials, counterexample_budget, controller";
+    "unit_index, sticking_trials, counterexample_budget, controller, falsify_budget, falsify_coverage_budget";
 inline constexpr const char* kPredictionColumns =
     "reliable, failure, verify_seconds, verify_json, verifier_theta_v, verifier_model";
 inline constexpr const char* kRolloutColumns =
@@ -89,7 +101,7 @@ inline constexpr const char* kRolloutColumns =
     "success, unstable";
 inline constexpr const char* kMetricColumns =
     "rollouts, successes, unstable, ends, outside, soundness, coverage, coverage_radius, contact_tolerance, "
-    "soundness_bug, counterexample, sticking, rollout_seconds, verify_seconds";
+    "soundness_bug, counterexample, sticking, rollout_seconds, verify_seconds, falsify";
 
 // UTC time as ISO 8601 with milliseconds, computed by SQLite.
 inline constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";

@@ -30,9 +30,14 @@ ResultsStore::ResultsStore(const std::filesystem::path& path) : db_(path) {
       throw std::runtime_error(db_.path() + ": not a cmt results database (it has other tables)");
     db_.exec(s::kCreate);
     db_.exec("PRAGMA user_version=" + std::to_string(kResultsSchemaVersion));
+  } else if (v == 2) {
+    // In the same transaction: another process opening the file meanwhile waits, then sees version 3.
+    db_.exec(s::kMigrate2To3);
+    db_.exec("PRAGMA user_version=" + std::to_string(kResultsSchemaVersion));
   } else if (v != kResultsSchemaVersion) {
     throw std::runtime_error(db_.path() + ": results schema version " + std::to_string(v) +
-                             ", this cmt reads version " + std::to_string(kResultsSchemaVersion));
+                             ", this cmt reads version " + std::to_string(kResultsSchemaVersion) +
+                             " (and migrates version 2)");
   }
   t.commit();
 }
@@ -55,8 +60,8 @@ void ResultsStore::register_units(std::int64_t run_id, const std::vector<SweepUn
   auto st = db_.prepare(
       "INSERT OR IGNORE INTO configs(run_id, unit_key, task, task_file, task_yaml, strategy, params, n, "
       "seed, "
-      "mode, unit_index, sticking_trials, counterexample_budget, controller) VALUES (?, ?, ?, ?, ?, ?, ?, ?, "
-      "?, ?, ?, ?, ?, ?)");
+      "mode, unit_index, sticking_trials, counterexample_budget, controller, falsify_budget, "
+      "falsify_coverage_budget) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const SweepUnit& u : units) {
     if (run_id > 0)
       st.bind(1, run_id);
@@ -74,7 +79,9 @@ void ResultsStore::register_units(std::int64_t run_id, const std::vector<SweepUn
         .bind(11, u.index)
         .bind(12, u.sticking_trials)
         .bind(13, u.counterexample_budget)
-        .bind(14, controller_form_name(u.controller));
+        .bind(14, controller_form_name(u.controller))
+        .bind(15, u.falsify_budget)
+        .bind(16, u.falsify_coverage_budget);
     st.run();
   }
   t.commit();
@@ -140,7 +147,7 @@ bool ResultsStore::commit_unit(const std::string& unit_key, const UnitRecord& r)
   }
 
   db_.prepare(std::string("INSERT INTO metrics(config_id, ") + s::kMetricColumns +
-              ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
+              ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)")
       .bind(1, id)
       .bind(2, r.rollout_count)
       .bind(3, r.successes)
@@ -156,6 +163,7 @@ bool ResultsStore::commit_unit(const std::string& unit_key, const UnitRecord& r)
       .bind(13, r.sticking)
       .bind(14, r.rollout_seconds)
       .bind(15, r.verify_seconds)
+      .bind(16, r.falsify)
       .run();
 
   db_.prepare(std::string("UPDATE configs SET status = 'done', finished = ") + s::kNow +

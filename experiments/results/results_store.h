@@ -19,9 +19,11 @@
 
 namespace cmt {
 
-// PRAGMA user_version of a cmt results database; other values are refused. 2: configs.controller and
-// predictions.verifier_theta_v / verifier_model (the controller form became a unit field).
-inline constexpr int kResultsSchemaVersion = 2;
+// PRAGMA user_version of a cmt results database. 2: configs.controller and predictions.verifier_theta_v /
+// verifier_model (the controller form became a unit field). 3: configs.falsify_budget /
+// falsify_coverage_budget and metrics.falsify (the adversarial search). A version-2 file is migrated in place
+// when opened (results_schema.h kMigrate2To3); other versions are refused.
+inline constexpr int kResultsSchemaVersion = 3;
 
 // One row of `rollouts`: the end of one motion of one rollout.
 struct RolloutRow {
@@ -55,6 +57,7 @@ struct UnitRecord {
   std::optional<std::string> counterexample;  // counterexample_json
   std::optional<std::string> sticking;        // sticking_check_json
   double rollout_seconds = 0;
+  std::optional<std::string> falsify;  // falsify_json without `threads` (sweep_executor.h falsify_record)
 };
 
 struct MergeCounts {
@@ -66,8 +69,8 @@ struct MergeCounts {
 
 class ResultsStore {
  public:
-  // Opens the database, creating the schema in a new file; throws std::runtime_error for a file that is not
-  // a cmt results database.
+  // Opens the database, creating the schema in a new file and migrating a version-2 file to version 3;
+  // throws std::runtime_error for a file that is not a cmt results database (or of another version).
   explicit ResultsStore(const std::filesystem::path& path);
 
   // A runs row for this invocation; returns run_id.

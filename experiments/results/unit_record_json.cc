@@ -61,7 +61,8 @@ std::string unit_record_to_text(const UnitRecord& r) {
                   {"soundness_bug", r.soundness_bug},
                   {"counterexample", optional_json(r.counterexample)},
                   {"sticking", optional_json(r.sticking)},
-                  {"rollout_seconds", real(r.rollout_seconds)}};
+                  {"rollout_seconds", real(r.rollout_seconds)},
+                  {"falsify", optional_json(r.falsify)}};
   return json_text(j);
 }
 
@@ -105,6 +106,7 @@ UnitRecord unit_record_from_text(const std::string& text) {
     if (!j.at("counterexample").is_null()) r.counterexample = j.at("counterexample").get<std::string>();
     if (!j.at("sticking").is_null()) r.sticking = j.at("sticking").get<std::string>();
     r.rollout_seconds = real(j.at("rollout_seconds"));
+    if (!j.at("falsify").is_null()) r.falsify = j.at("falsify").get<std::string>();
     return r;
   } catch (const json::exception& e) {
     throw std::runtime_error(std::string("unit record: ") + e.what());

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "experiments/common/json_text.h"
+#include "experiments/falsify/falsify.h"
 #include "experiments/results/unit_record_json.h"
 #include "experiments/validation/verify_json.h"
 
@@ -15,6 +16,21 @@ namespace {
 std::array<double, 3> xyz(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
 }  // namespace
+
+std::string falsify_record(std::shared_ptr<const LoadedTask> task, const SweepUnit& unit,
+                           const ValidationResult& v, int threads) {
+  FalsifyOptions f;
+  f.budget = unit.falsify_budget;
+  f.coverage_budget = unit.falsify_coverage_budget;
+  f.mode = unit.mode;  // the baseline's: the validation's rollouts
+  f.seed = unit.seed;
+  f.threads = threads;
+  f.form = unit.controller;
+  const Strategy& strategy = task->task.strategy_named(unit.strategy);
+  nlohmann::json j = falsify_json(*task, run_falsify(task, strategy, v.prediction, f, v.rollouts));
+  j.erase("threads");  // the result does not depend on it; the stored unit should not either
+  return json_text(j);
+}
 
 UnitRecord unit_record(const LoadedTask& task, const ValidationResult& v) {
   UnitRecord r;
@@ -93,8 +109,14 @@ UnitExecutor make_validation_executor() {
     options.form = unit.controller;
     options.sticking_trials = unit.sticking_trials;
     options.counterexample_budget = unit.counterexample_budget;
+    // The validation, then (with a falsify budget and a prediction) the adversarial search against that
+    // prediction with the validation's rollouts as its baseline: both in the child under a verifier budget.
     const auto validate = [&](const ValidateOptions& o) {
-      return unit_record(*cache->task, run_validation(cache->task, unit.task_yaml, unit.strategy, o));
+      const ValidationResult v = run_validation(cache->task, unit.task_yaml, unit.strategy, o);
+      UnitRecord record = unit_record(*cache->task, v);
+      if (unit.falsify_budget + unit.falsify_coverage_budget > 0 && o.verifier_timed_out_after <= 0)
+        record.falsify = falsify_record(cache->task, unit, v, threads);
+      return record;
     };
     if (unit.verify_budget_seconds <= 0) return validate(options);
     // The record comes back from the child process as text, bit for bit.

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -211,11 +212,13 @@ struct Report {
   json figures;  // figures.json
 };
 
-Report make_report(const std::string& name) {
+// `edit` changes the database before the report is made.
+Report make_report(const std::string& name, const std::function<void(const fs::path&)>& edit = {}) {
   const fs::path base = fs::path(testing::TempDir()) / ("cmt_report_test_" + name);
   fs::remove_all(base);
   fs::create_directories(base);
   write_results_db(base / "results.sqlite");
+  if (edit) edit(base / "results.sqlite");
   Report r;
   r.dir = base / "report";
   r.status = cmt::test::run("report " + (base / "results.sqlite").string() + " -o " + r.dir.string()).status;
@@ -787,6 +790,92 @@ json report_error(const fs::path& db, const fs::path& out, int* status) {
   const cmt::test::Result r = cmt::test::run("report " + db.string() + " -o " + out.string() + " --json");
   *status = r.status;
   return r.out.empty() ? json() : json::parse(r.out)["error"];
+}
+
+// The adversarial search of config 1 (cube / stick), as the sweep stores it (metrics.falsify, schema
+// version 3): one end outside, one of two pieces unreached.
+const char* const kFalsifyReplay = "cmt rollout models/tasks/cube.yaml --strategy stick --errors 0.5,1";
+
+json falsify_json_of_config1() {
+  const json reached = {
+      {"step", 0},         {"motion", "p1"},       {"atom", 0},         {"atom_name", "f0"},
+      {"kind", "face"},    {"measure", 1.0},       {"reached", true},   {"reached_by", "random"},
+      {"searched", false}, {"search_rollouts", 0}, {"closest_end", 0.0}};
+  const json unreached = {
+      {"step", 0},        {"motion", "p1"},        {"atom", 3},          {"atom_name", "e3"},
+      {"kind", "edge"},   {"measure", 0.5},        {"reached", false},   {"reached_by", nullptr},
+      {"searched", true}, {"search_rollouts", 16}, {"closest_end", 0.02}};
+  return {{"task", "cube"},
+          {"strategy", "stick"},
+          {"reliable", true},
+          {"budget", 32},
+          {"coverage_budget", 16},
+          {"searches", 5},
+          {"rollouts", 48},
+          {"unstable", 2},
+          {"outside", 1},
+          {"soundness_bugs",
+           {{{"how", "falsify"},
+             {"motion", "p1"},
+             {"step", 0},
+             {"distance", 0.0125},
+             {"replay", kFalsifyReplay}}}},
+          {"motions", {{{"step", 0}, {"motion", "p1"}, {"best_signed_distance", 0.0125}}}},
+          {"coverage_before", 0.4},
+          {"coverage_after", 0.55},
+          {"pieces", {reached, unreached}},
+          {"unreached_pieces", {unreached}}};
+}
+
+TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
+  const Report r = make_report("falsify", [](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {falsify_json_of_config1().dump()});
+  });
+  ASSERT_EQ(r.status, 0);
+  // HTML: the section after the overview, one row (config 1 only).
+  const std::string html = between(r.html, "<h2 id=\"falsify\">Adversarial rollouts</h2>", "</table>");
+  ASSERT_FALSE(html.empty()) << r.html;
+  EXPECT_LT(r.html.find("<h2 id=\"overview\">"), r.html.find("<h2 id=\"falsify\">"));
+  EXPECT_LT(r.html.find("<h2 id=\"falsify\">"), r.html.find("<h2 id=\"details\">"));
+  EXPECT_EQ(occurrences(html, "<tr>"), 2u);  // the header and config 1
+  EXPECT_NE(html.find("<tr><td><a href=\"#config-1\">1</a></td><td>cube / stick</td><td>reliable</td>"
+                      "<td>48 (2 unstable)</td><td>5</td><td>1</td><td>p1 0.0125 (outside)</td>"
+                      "<td>0.4000 → 0.5500</td><td>1/2 (random 1)</td>"
+                      "<td>step 0 p1: e3 (edge, measure 0.5, closest end 0.02, searched)</td></tr>"),
+            std::string::npos)
+      << html;
+  // Markdown: the same table under its own heading.
+  const std::string md = between(r.markdown, "## Adversarial rollouts", "## Config 1:");
+  ASSERT_FALSE(md.empty()) << r.markdown;
+  EXPECT_NE(md.find("| [1](#config-1) | cube / stick | reliable | 48 (2 unstable) | 5 | 1 | p1 0.0125 "
+                    "(outside) | 0.4000 → 0.5500 | 1/2 (random 1) | step 0 p1: e3 (edge, measure 0.5, "
+                    "closest end 0.02, searched) |"),
+            std::string::npos)
+      << md;
+  // The note with the farthest end's replay command, in both documents; the summary line.
+  const std::string note = std::string(
+                               "adversarial search: 48 search rollouts, 1 motion end outside the "
+                               "prediction (farthest 0.0125), replay with: ") +
+                           kFalsifyReplay;
+  EXPECT_NE(html_section(r.html, 1).find("<li>" + html_escape(note) + "</li>"), std::string::npos);
+  EXPECT_NE(r.markdown.find("- " + note), std::string::npos);
+  EXPECT_NE(r.markdown.find("- **adversarial rollouts:** 1 configuration searched: 48 search rollouts, 1 "
+                            "motion ends outside the prediction found by the search; mean coverage 0.4000 "
+                            "before, 0.5500 after"),
+            std::string::npos)
+      << r.markdown;
+
+  // Without search data (no falsify column, or NULL): no section.
+  const cmt::report::ResultsDb db;
+  cmt::report::ConfigRow plain;
+  plain.status = "done";
+  plain.metrics = cmt::report::MetricsRow{};
+  const cmt::report::ReportContent content = cmt::report::build_report_content(db, {section_of(plain)});
+  EXPECT_TRUE(content.falsify.rows.empty());
+  EXPECT_EQ(cmt::report::render_html(content).find("Adversarial rollouts"), std::string::npos);
+  EXPECT_EQ(cmt::report::render_markdown(content).find("Adversarial rollouts"), std::string::npos);
 }
 
 TEST(Report, BadDatabasesExitWithStatus2) {

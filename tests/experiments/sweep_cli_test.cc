@@ -10,6 +10,8 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -221,6 +223,62 @@ TEST_F(SweepCli, VerifierBudgetTimesOutIntoAResultRow) {
   const std::string zero =
       test::write_file(dir_ / "zero.yaml", "verify_budget_seconds: 0\n" + two_unit_spec()).string();
   run_json("sweep " + zero + " --db " + path("zero.sqlite"), 2);
+}
+
+// A unit with a falsify budget (docs/falsify.md "In sweeps and the report"): the search runs after the
+// validation against its prediction, with its rollouts as the baseline, in the forked child under a verifier
+// budget or in the process without one, with the same result for any thread count; a verifier that timed
+// out gives no search; the report lists it.
+TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
+  const std::string unit =
+      "n: 10\nseeds: [1]\nfalsify: {budget: 16, coverage_budget: 16}\ntasks:\n  - file: " +
+      test::source_task("two_blocks") + "\n    strategies: [slide]\n";
+  const std::string forked =
+      test::write_file(dir_ / "forked.yaml", "verify_budget_seconds: 600\n" + unit).string();
+  const std::string plain = test::write_file(dir_ / "plain.yaml", unit).string();
+  const std::string tight =
+      test::write_file(dir_ / "tight.yaml", "verify_budget_seconds: 0.001\n" + unit).string();
+  run_json("sweep " + forked + " --db " + path("forked.sqlite") + " --threads 2", 0);
+  run_json("sweep " + plain + " --db " + path("plain.sqlite") + " --threads 1", 0);
+  run_json("sweep " + tight + " --db " + path("tight.sqlite") + " --threads 2", 0);
+  const auto search = [&](const std::string& db) {
+    const auto rows = test::query_rows(
+        db,
+        "SELECT c.falsify_budget, c.falsify_coverage_budget, m.coverage, m.falsify FROM configs c JOIN "
+        "metrics m USING (config_id)");
+    EXPECT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0][0], "16");
+    EXPECT_EQ(rows[0][1], "16");
+    return rows[0];
+  };
+  const auto a = search(path("forked.sqlite")), b = search(path("plain.sqlite"));
+  nlohmann::json fa = nlohmann::json::parse(a[3]), fb = nlohmann::json::parse(b[3]);
+  EXPECT_EQ(fa["task"], "two_blocks");
+  EXPECT_EQ(fa["random_rollouts"], 10);  // the validation's rollouts are the baseline
+  EXPECT_FALSE(fa.contains("threads"));
+  EXPECT_GE(fa["rollouts"].get<int>(), 16);
+  EXPECT_LE(fa["rollouts"].get<int>(), 32);
+  EXPECT_EQ(fa["outside"], 0);                                      // slide is sound
+  EXPECT_EQ(fa["coverage_before"].get<double>(), std::stod(a[2]));  // the validation's own coverage
+  for (const char* timing : {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds"}) {
+    fa.erase(timing);
+    fb.erase(timing);
+  }
+  EXPECT_EQ(fa, fb);  // forked at 2 threads = in process at 1
+  // No prediction, no search.
+  EXPECT_EQ(test::query_rows(path("tight.sqlite"), "SELECT m.falsify FROM metrics m"),
+            (test::Rows{{"NULL"}}));
+
+  const test::Result report = test::run("report " + path("forked.sqlite") + " -o " + path("report"));
+  EXPECT_EQ(report.status, 0) << report.out;
+  std::ifstream in(dir_ / "report" / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t section = html.find("<h2 id=\"falsify\">Adversarial rollouts</h2>");
+  ASSERT_NE(section, std::string::npos) << html;
+  EXPECT_NE(html.find("<td>two_blocks / slide</td><td>reliable</td><td>" +
+                          std::to_string(fa["rollouts"].get<int>()),
+                      section),
+            std::string::npos);
 }
 
 TEST_F(SweepCli, ExportCsvWritesEveryTable) {

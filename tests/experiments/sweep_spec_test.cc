@@ -267,6 +267,88 @@ TEST(SweepSpec, UnitKeyIgnoresCommentsButNotValues) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SweepSpec, FalsifyBudgetsAreUnitFieldsWithPerEntryOverrides) {
+  // The spec's budgets are every entry's default; an entry's own `falsify` replaces them (0, 0: no search).
+  const std::string spec =
+      "n: 10\nseeds: [1]\nfalsify: {budget: 200, coverage_budget: 100}\ntasks:\n"
+      "  - file: " +
+      kTwoBlocks + "\n    strategies: [down]\n  - file: " + kTwoBlocks +
+      "\n    strategies: [slide]\n    falsify: {budget: 0, coverage_budget: 0}\n  - file: " + kCube +
+      "\n    strategies: [stick]\n    falsify:\n      budget: 16\n"
+      "      coverage_budget: 0\n";
+  const SweepSpec parsed = parse(spec);
+  EXPECT_EQ(parsed.falsify.budget, 200);
+  EXPECT_EQ(parsed.falsify.coverage_budget, 100);
+  const auto units = expand_units(parsed);
+  ASSERT_EQ(units.size(), 3u);
+  EXPECT_EQ(units[0].falsify_budget, 200);
+  EXPECT_EQ(units[0].falsify_coverage_budget, 100);
+  EXPECT_EQ(units[1].falsify_budget, 0);
+  EXPECT_EQ(units[1].falsify_coverage_budget, 0);
+  EXPECT_EQ(units[2].falsify_budget, 16);
+  EXPECT_EQ(units[2].falsify_coverage_budget, 0);
+  // Without the key: no search.
+  const auto plain = expand_units(parse(two_blocks_spec("")));
+  ASSERT_EQ(plain.size(), 2u);
+  EXPECT_EQ(plain[0].falsify_budget + plain[0].falsify_coverage_budget, 0);
+  // A search is another result: another key; switched off per entry, the key is the plain one.
+  EXPECT_NE(units[0].unit_key, plain[0].unit_key);
+  EXPECT_EQ(units[1].unit_key, plain[1].unit_key);
+  // Either budget alone changes the key.
+  const std::string yaml = plain[0].task_yaml;
+  constexpr auto kImp = ControllerForm::kImpedance;
+  const std::string base = make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0), base);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1), base);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0),
+            make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1));
+}
+
+TEST(SweepSpec, FalsifyErrorsNameFileKeyAndReason) {
+  const std::string top = "n: 10\nseeds: [1]\n";
+  expect_error(two_blocks_spec("", top + "falsify: {budget: -1, coverage_budget: 0}\n"), "falsify.budget",
+               "must be in [0, 10000000]");
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 10, coverage_budget: 1.5}\n"),
+               "falsify.coverage_budget", "expected an integer");
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 10, coverage_budget: 20000000}\n"),
+               "falsify.coverage_budget", "must be in [0, 10000000]");
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 10, coverage_budget: 5, random: 3}\n"),
+               "falsify.random", "unknown key");
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 10}\n"), "falsify.coverage_budget",
+               "missing required key");
+  expect_error(two_blocks_spec("", top + "falsify: 200\n"), "falsify", "expected a mapping");
+  expect_error(two_blocks_spec("    falsify: {budget: ten, coverage_budget: 0}\n"), "tasks[0].falsify.budget",
+               "expected an integer, got 'ten'");
+  expect_error(two_blocks_spec("    falsify: {budjet: 1, coverage_budget: 0}\n"), "tasks[0].falsify.budjet",
+               "unknown key");
+}
+
+// Databases written before the falsify search existed must resume: a unit without a search keeps its key.
+TEST(SweepSpec, UnitKeyWithoutFalsifyIsTheOneBeforeTheSearchExisted) {
+  const auto units = expand_units(parse(two_blocks_spec("")));
+  ASSERT_EQ(units[0].strategy, "down");
+  // `cmt sweep --list` of this unit by the program built before the falsify keys were added.
+  EXPECT_EQ(units[0].unit_key, "57cb2f78eef15965852ab58bf069ade8");
+  // The key's fields as they were (docs/sweeps.md "Unit key"), built by hand.
+  const std::string yaml = units[0].task_yaml;
+  const std::string before = fnv1a128_hex(HashInput()
+                                              .add("cmt-sweep-unit/2")
+                                              .add(yaml)
+                                              .add("down")
+                                              .add(10)
+                                              .add("1")
+                                              .add("uniform")
+                                              .add("impedance")
+                                              .add(0)
+                                              .add(400)
+                                              .add("0.0")
+                                              .text());
+  EXPECT_EQ(units[0].unit_key, before);
+  EXPECT_EQ(
+      make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, ControllerForm::kImpedance, 0, 400, 0, 0, 0),
+      before);
+}
+
 TEST(StableHash, Fnv1a128TestVectors) {
   // The offset basis is the hash of the empty string; "a" and "foobar" are from the FNV reference test
   // vectors (IETF draft-eastlake-fnv, FNV-1a 128-bit).

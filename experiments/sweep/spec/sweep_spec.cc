@@ -33,7 +33,7 @@ class SpecParser {
     const SpecNode root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
     root.require_map({"description", "n", "seeds", "mode", "controller", "sticking_trials",
-                      "counterexample_budget", "verify_budget_seconds", "tasks"});
+                      "counterexample_budget", "verify_budget_seconds", "falsify", "tasks"});
     SweepSpec spec;
     spec.path = file_;
     spec.text = text;
@@ -73,6 +73,8 @@ class SpecParser {
             "must be > 0 and <= " + std::to_string(static_cast<long long>(kMaxSweepVerifyBudgetSeconds)) +
             " seconds (leave it out for no limit), got " + budget.raw().Scalar());
     }
+    if (root.has("falsify")) spec.falsify = parse_falsify(root.at("falsify"));
+    spec_falsify_ = spec.falsify;
     const SpecNode tasks = root.at("tasks").list();
     for (std::size_t i = 0; i < tasks.size(); ++i) spec.tasks.push_back(parse_task(tasks.item(i)));
     return spec;
@@ -80,9 +82,10 @@ class SpecParser {
 
  private:
   SweepTaskEntry parse_task(const SpecNode& n) const {
-    n.require_map({"file", "strategies", "n", "grid", "random"});
+    n.require_map({"file", "strategies", "n", "falsify", "grid", "random"});
     SweepTaskEntry entry;
     entry.n = n.has("n") ? static_cast<int>(n.at("n").integer(1, kMaxSweepRollouts)) : spec_n_;
+    entry.falsify = n.has("falsify") ? parse_falsify(n.at("falsify")) : spec_falsify_;
     entry.spec_key = n.path();
     const SpecNode file = n.at("file");
     entry.file = (base_dir_ / file.string()).lexically_normal();
@@ -127,6 +130,15 @@ class SpecParser {
         entry.param_sets.push_back(std::move(set));
       }
     return entry;
+  }
+
+  // `falsify: {budget: N, coverage_budget: M}`, both required.
+  static SweepFalsify parse_falsify(const SpecNode& n) {
+    n.require_map({"budget", "coverage_budget"});
+    SweepFalsify f;
+    f.budget = static_cast<int>(n.at("budget").integer(0, kMaxSweepFalsifyBudget));
+    f.coverage_budget = static_cast<int>(n.at("coverage_budget").integer(0, kMaxSweepFalsifyBudget));
+    return f;
   }
 
   // One parameter key of a grid or of random.ranges: friction, an uncertainty key, or motions (a mapping of
@@ -249,7 +261,8 @@ class SpecParser {
   std::string file_;
   std::filesystem::path base_dir_;
   ControllerForm controller_ = ControllerForm::kImpedance;
-  int spec_n_ = 0;  // the spec's `n`, the default of every task entry
+  int spec_n_ = 0;             // the spec's `n`, the default of every task entry
+  SweepFalsify spec_falsify_;  // the spec's `falsify`, the default of every task entry
 };
 
 }  // namespace

@@ -23,9 +23,18 @@ inline constexpr long long kMaxSweepRollouts = 10'000'000;        // n per unit
 inline constexpr long long kMaxSweepRandomDraws = 1'000'000;      // random.count per task
 inline constexpr long long kMaxSweepStickingTrials = 10'000'000;  // sticking_trials per unit
 inline constexpr long long kMaxSweepCounterexampleBudget = 10'000'000;
+inline constexpr long long kMaxSweepFalsifyBudget = 10'000'000;  // falsify.budget and .coverage_budget
 inline constexpr double kMaxSweepVerifyBudgetSeconds = 7 * 24 * 3600.0;  // a week: beyond it, no limit at all
 // Seeds are stored in SQLite INTEGER columns (signed 64-bit), so they must stay below 2^63.
 inline constexpr long long kMaxSweepSeed = 0x7fffffffffffffffLL;
+
+// The adversarial-rollout search after a unit's validation (docs/falsify.md "In sweeps and the report"):
+// search rollouts of the falsification and of the coverage phase. Both 0: no search.
+struct SweepFalsify {
+  int budget = 0;
+  int coverage_budget = 0;
+  bool enabled() const { return budget + coverage_budget > 0; }
+};
 
 struct SweepTaskEntry {
   std::string spec_key;        // tasks[i]
@@ -34,6 +43,7 @@ struct SweepTaskEntry {
   Task base;                   // ... parsed
   std::vector<std::string> strategies;
   int n = 0;                         // rollouts per unit of this entry: its `n`, else the spec's
+  SweepFalsify falsify;              // this entry's `falsify`, else the spec's
   std::vector<ParamSet> param_sets;  // grid points x random draws; one empty set without either
 };
 
@@ -52,6 +62,7 @@ struct SweepSpec {
   // Wall-clock seconds a unit's verifier may take, 0 = no limit (experiments/common/verifier_budget.h):
   // beyond it the unit records "verifier: timed out after B s" and its rollouts run without a prediction.
   double verify_budget_seconds = 0;
+  SweepFalsify falsify;  // `falsify: {budget, coverage_budget}`; missing: no search
   std::vector<SweepTaskEntry> tasks;
 };
 

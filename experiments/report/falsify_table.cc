@@ -1,0 +1,192 @@
+// The report's "Adversarial rollouts" section (report_table.h falsify_table; docs/falsify.md "In sweeps and
+// the report"): per configuration whose sweep unit ran the adversarial search, the numbers of its
+// metrics.falsify object (`cmt falsify --json`'s, without `threads`), and the summary counts and notes.
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "experiments/report/report_table.h"
+
+namespace cmt::report {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kFractionDecimals = 4;  // coverage, as in the main table
+
+Cell text(const std::string& s) { return {{s, "", false, ""}}; }
+
+// Missing, null or mistyped members read as the fallback: the section shows what the object has.
+const json& member(const json& j, const char* key) {
+  static const json null;
+  if (!j.is_object()) return null;
+  const auto it = j.find(key);
+  return it == j.end() ? null : *it;
+}
+
+double number(const json& j, const char* key) {
+  const json& v = member(j, key);
+  return v.is_number() ? v.get<double>() : SummaryStats::kNoValue;
+}
+
+int integer(const json& j, const char* key) {
+  const json& v = member(j, key);
+  return v.is_number() ? static_cast<int>(v.get<double>()) : 0;
+}
+
+std::string string(const json& j, const char* key) {
+  const json& v = member(j, key);
+  return v.is_string() ? v.get<std::string>() : "";
+}
+
+const json& array(const json& j, const char* key) {
+  static const json empty = json::array();
+  const json& v = member(j, key);
+  return v.is_array() ? v : empty;
+}
+
+// Four significant digits: distances and measures come in the task's units, whatever its scale.
+std::string significant(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+std::string section_link(const ConfigRow& c) {
+  std::string href = "#";
+  href += section_anchor(c);
+  return href;
+}
+
+// "v1 -0.0123; v2 0.5 (outside)": per prediction step, the falsification's largest signed distance.
+std::string best_distances(const json& f) {
+  std::string out;
+  for (const json& m : array(f, "motions")) {
+    if (!out.empty()) out += "; ";
+    const double d = number(m, "best_signed_distance");
+    out += string(m, "motion");
+    out += ' ';
+    out += significant(d);
+    if (std::isfinite(d) && d > 0) out += " (outside)";
+  }
+  return out.empty() ? "-" : out;
+}
+
+std::string coverage_change(const json& f) {
+  return format_fixed(number(f, "coverage_before"), kFractionDecimals) + " → " +
+         format_fixed(number(f, "coverage_after"), kFractionDecimals);
+}
+
+// "7/9 (random 5, falsify 1, coverage 1)".
+std::string pieces_reached(const json& f) {
+  const json& pieces = array(f, "pieces");
+  std::map<std::string, int> by;
+  int reached = 0;
+  for (const json& p : pieces)
+    if (member(p, "reached").is_boolean() && member(p, "reached").get<bool>()) {
+      ++reached;
+      ++by[string(p, "reached_by")];
+    }
+  std::string out = std::to_string(reached) + "/" + std::to_string(pieces.size());
+  std::string detail;
+  for (const char* how : {"random", "falsify", "coverage"})
+    if (by.count(how))
+      detail += (detail.empty() ? "" : ", ") + std::string(how) + " " + std::to_string(by[how]);
+  return detail.empty() ? out : out + " (" + detail + ")";
+}
+
+// "step 1 v2: f3 (face, measure 0.25, closest end 0.01, searched)"; one per unreached piece.
+Cell unreached(const json& f) {
+  Cell cell;
+  const json& pieces = array(f, "unreached_pieces");
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const json& p = pieces[i];
+    std::string s = "step " + std::to_string(integer(p, "step")) + " " + string(p, "motion") + ": " +
+                    string(p, "atom_name") + " (" + string(p, "kind") + ", measure " +
+                    significant(number(p, "measure"));
+    if (const double closest = number(p, "closest_end"); std::isfinite(closest))
+      s += ", closest end " + significant(closest);
+    if (member(p, "searched").is_boolean() && member(p, "searched").get<bool>()) s += ", searched";
+    s += i + 1 < pieces.size() ? ");" : ")";
+    cell.push_back({s, "", false, ""});
+  }
+  return cell.empty() ? text("-") : cell;
+}
+
+std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
+  const ConfigRow& c = *s.row;
+  std::vector<Cell> row;
+  row.push_back({{std::to_string(c.config_id), section_link(c), false, ""}});
+  row.push_back(text(s.label));
+  row.push_back(text(verdict_text(c)));
+  std::string rollouts = std::to_string(integer(f, "rollouts"));
+  if (const int unstable = integer(f, "unstable"); unstable > 0)
+    rollouts += " (" + std::to_string(unstable) + " unstable)";
+  row.push_back(text(rollouts));
+  row.push_back(text(std::to_string(integer(f, "searches"))));
+  row.push_back(text(std::to_string(integer(f, "outside"))));
+  row.push_back(text(best_distances(f)));
+  row.push_back(text(coverage_change(f)));
+  row.push_back(text(pieces_reached(f)));
+  row.push_back(unreached(f));
+  return row;
+}
+
+}  // namespace
+
+const nlohmann::json* falsify_data(const ConfigRow& row) {
+  if (!row.done() || !row.metrics || !row.metrics->falsify.is_object()) return nullptr;
+  return &row.metrics->falsify;
+}
+
+Table falsify_table(const std::vector<ConfigSection>& sections) {
+  Table t;
+  t.headers = {"id",  // not "config": the full table's first header, which report.md readers look for
+               "configuration",
+               "verdict",
+               "search rollouts",
+               "searches",
+               "ends outside (search)",
+               "best signed distance per motion",
+               "coverage before → after",
+               "pieces reached/total",
+               "unreached pieces"};
+  for (const ConfigSection& s : sections)
+    if (const json* f = falsify_data(*s.row)) t.rows.push_back(falsify_row(s, *f));
+  return t;
+}
+
+std::string falsify_note(const ConfigRow& row) {
+  const json* f = falsify_data(row);
+  if (f == nullptr) return "";
+  std::string note = "adversarial search: " + std::to_string(integer(*f, "rollouts")) + " search rollouts, ";
+  const int outside = integer(*f, "outside");
+  if (outside == 0) return note + "no motion end outside the prediction; coverage " + coverage_change(*f);
+  note += std::to_string(outside) + " motion end" + (outside == 1 ? "" : "s") + " outside the prediction";
+  const json& bugs = array(*f, "soundness_bugs");
+  if (!bugs.empty()) {
+    const json& worst = bugs.front();  // farthest first
+    note += " (farthest " + significant(number(worst, "distance")) + ")";
+    if (const std::string replay = string(worst, "replay"); !replay.empty())
+      note += ", replay with: " + replay;
+  }
+  return note;
+}
+
+void count_falsify(const ConfigRow& row, SummaryStats& s, double* sum_before, double* sum_after,
+                   int* with_coverage) {
+  const json* f = falsify_data(row);
+  if (f == nullptr) return;
+  ++s.falsified;
+  s.falsify_rollouts += integer(*f, "rollouts");
+  s.falsify_outside += integer(*f, "outside");
+  const double before = number(*f, "coverage_before"), after = number(*f, "coverage_after");
+  if (std::isfinite(before) && std::isfinite(after)) {
+    *sum_before += before;
+    *sum_after += after;
+    ++*with_coverage;
+  }
+}
+
+}  // namespace cmt::report
