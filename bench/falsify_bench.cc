@@ -37,7 +37,8 @@ struct Fixture {
 const Fixture& fixture() {
   static const Fixture f = [] {
     Fixture x;
-    const std::filesystem::path file = std::filesystem::path(CMT_SOURCE_DIR) / "models" / "tasks" / "hole.yaml";
+    const std::filesystem::path file =
+        std::filesystem::path(CMT_SOURCE_DIR) / "models" / "tasks" / "hole.yaml";
     std::ifstream in(file);
     std::stringstream text;
     text << in.rdbuf();
@@ -47,7 +48,8 @@ const Fixture& fixture() {
     x.scene = cmt::RolloutScene::build(x.task, sim);
     x.teach = x.task->task.find_strategy("teach");
     // The impedance form's verifier model, as cmt falsify and cmt validate use it.
-    const cmt::VerifierModel model = cmt::make_verifier_model(text.str(), x.task, cmt::ControllerForm::kImpedance);
+    const cmt::VerifierModel model =
+        cmt::make_verifier_model(text.str(), x.task, cmt::ControllerForm::kImpedance);
     x.prediction = cmt::verify_strategy(*model.task, *x.teach, model.verify_options());
     const cmt::ErrorVectorLayout layout(x.task->task, *x.teach, cmt::default_error_shape(false, 0.2));
     cmt::Rng rng = cmt::rollout_stream(1, 0);
@@ -104,7 +106,8 @@ void BM_SearchOverhead(benchmark::State& state) {
     return out;
   };
   const int dimension = static_cast<int>(f.vectors.front().size());
-  for (auto _ : state) benchmark::DoNotOptimize(cmt::cross_entropy_maximize(dimension, 2 * kRollouts, 1, {}, score));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cmt::cross_entropy_maximize(dimension, 2 * kRollouts, 1, {}, score));
   state.SetItemsProcessed(state.iterations() * 2 * kRollouts);
 }
 BENCHMARK(BM_SearchOverhead)->Unit(benchmark::kMillisecond);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -145,19 +146,27 @@ double falsify_score(const Context& c, const Observed& o, std::vector<double>* b
   return score;
 }
 
-void falsification_search(const Context& c, std::vector<RolloutOutcome>* all, FalsifyResult* r) {
-  const BatchScore score = [&](const std::vector<std::vector<double>>& xs) {
+// A search's batch score: runs the vectors, records unstable rollouts and findings (as `how`), scores each
+// rollout with `score_one` and appends the rollouts to `all`.
+BatchScore batch_score(const Context& c, const std::string& how, std::vector<RolloutOutcome>* all,
+                       FalsifyResult* r, const std::function<double(const Observed&)>& score_one) {
+  return [&c, how, all, r, score_one](const std::vector<std::vector<double>>& xs) {
     std::vector<RolloutOutcome> outs = run_vectors(c, xs, static_cast<int>(all->size()));
     std::vector<double> scores;
     for (std::size_t i = 0; i < outs.size(); ++i) {
       const Observed o = observe(c, outs[i]);
       r->unstable += o.unstable;
-      collect_findings(c, outs[i], o, "falsify", xs[i], r);
-      scores.push_back(falsify_score(c, o, &r->best_signed_distance));
+      collect_findings(c, outs[i], o, how, xs[i], r);
+      scores.push_back(score_one(o));
       all->push_back(std::move(outs[i]));
     }
     return scores;
   };
+}
+
+void falsification_search(const Context& c, std::vector<RolloutOutcome>* all, FalsifyResult* r) {
+  const BatchScore score = batch_score(
+      c, "falsify", all, r, [&](const Observed& o) { return falsify_score(c, o, &r->best_signed_distance); });
   const CrossEntropyResult cem = cross_entropy_maximize(c.layout.size(), c.options.budget,
                                                         splitmix64(c.options.seed ^ 0x46616c7369667900ULL),
                                                         c.options.search, score, {}, first_draw(c));
@@ -222,23 +231,13 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
     if (!pc.reached_by.empty()) continue;  // reached meanwhile, by an earlier target's search
     pc.searched = true;
     const int budget = std::min(per_target, c.options.coverage_budget - spent);
-    std::vector<RolloutOutcome> found;
-    const BatchScore score = [&](const std::vector<std::vector<double>>& xs) {
-      std::vector<RolloutOutcome> outs = run_vectors(c, xs, static_cast<int>(all->size()));
-      std::vector<double> scores;
-      for (std::size_t i = 0; i < outs.size(); ++i) {
-        const Observed o = observe(c, outs[i]);
-        r->unstable += o.unstable;
-        collect_findings(c, outs[i], o, "coverage", xs[i], r);
-        double s = kNoScore;
-        for (const ObservedEnd& e : o.ends)
-          if (e.motion == pc.step) s = std::max(s, -distance_to_piece(c.task.cspace, pc.piece, e.end));
-        scores.push_back(s);
-        found.push_back(outs[i]);
-        all->push_back(std::move(outs[i]));
-      }
-      return scores;
-    };
+    const std::size_t first = all->size();
+    const BatchScore score = batch_score(c, "coverage", all, r, [&](const Observed& o) {
+      double s = kNoScore;
+      for (const ObservedEnd& e : o.ends)
+        if (e.motion == pc.step) s = std::max(s, -distance_to_piece(c.task.cspace, pc.piece, e.end));
+      return s;
+    });
     const GenerationDone reached = [&](const std::vector<CrossEntropyCandidate>& gen) {
       return std::any_of(gen.begin(), gen.end(),
                          [&](const CrossEntropyCandidate& x) { return -x.score <= c.tolerance; });
@@ -250,7 +249,9 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
     r->rollouts += cem.evaluations;
     pc.rollouts = cem.evaluations;
     spent += cem.evaluations;
-    mark_reached(c, found, "coverage", &r->pieces);
+    mark_reached(c,
+                 std::vector<RolloutOutcome>(all->begin() + static_cast<std::ptrdiff_t>(first), all->end()),
+                 "coverage", &r->pieces);
   }
 }
 

@@ -181,13 +181,9 @@ void html_runs(std::ostream& h, const ReportContent& c) {
 }
 
 // The overview: fixed layout at the page's width, so long labels wrap instead of widening the table.
-void html_overview(std::ostream& h, const Table& t) {
-  h << "<h2 id=\"overview\">Configurations</h2>\n<table class=\"overview\">\n<colgroup>";
-  for (std::size_t k = 0; k < t.headers.size(); ++k) {
-    const std::string width = k < t.widths.size() ? t.widths[k] : "";
-    h << (width.empty() ? "<col>" : "<col style=\"width: " + width + "\">");
-  }
-  h << "</colgroup>\n<tr>";
+// A table's header row and rows, and the closing tag (the caller opened the table).
+void html_rows(std::ostream& h, const Table& t) {
+  h << "<tr>";
   for (const std::string& head : t.headers) h << "<th>" << html_escape(head) << "</th>";
   h << "</tr>\n";
   for (const auto& row : t.rows) {
@@ -196,6 +192,16 @@ void html_overview(std::ostream& h, const Table& t) {
     h << "</tr>\n";
   }
   h << "</table>\n";
+}
+
+void html_overview(std::ostream& h, const Table& t) {
+  h << "<h2 id=\"overview\">Configurations</h2>\n<table class=\"overview\">\n<colgroup>";
+  for (std::size_t k = 0; k < t.headers.size(); ++k) {
+    const std::string width = k < t.widths.size() ? t.widths[k] : "";
+    h << (width.empty() ? "<col>" : "<col style=\"width: " + width + "\">");
+  }
+  h << "</colgroup>\n";
+  html_rows(h, t);
 }
 
 // Every column of the configuration's row of the full table, one per line.
@@ -211,15 +217,8 @@ void html_details_table(std::ostream& h, const Table& t, std::size_t row) {
 void html_falsify(std::ostream& h, const Table& t) {
   if (t.rows.empty()) return;
   h << "<h2 id=\"falsify\">" << kFalsifyTitle << "</h2>\n<p>" << html_escape(kFalsifyIntro)
-    << "</p>\n<table class=\"falsify\">\n<tr>";
-  for (const std::string& head : t.headers) h << "<th>" << html_escape(head) << "</th>";
-  h << "</tr>\n";
-  for (const auto& row : t.rows) {
-    h << "<tr>";
-    for (const Cell& cell : row) h << "<td>" << html_cell(cell) << "</td>";
-    h << "</tr>\n";
-  }
-  h << "</table>\n";
+    << "</p>\n<table class=\"falsify\">\n";
+  html_rows(h, t);
 }
 
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
