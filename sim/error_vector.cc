@@ -70,20 +70,18 @@ ErrorVectorShape default_error_shape(bool position_form, double damper_speed_per
 
 ErrorVectorShape shape_of_vector(const Task& task, const Strategy& strategy, int size, bool position_form,
                                  double damper_speed_per_scale) {
-  ErrorVectorShape shape = default_error_shape(position_form, damper_speed_per_scale);
+  const ErrorVectorShape defaults = default_error_shape(position_form, damper_speed_per_scale);
+  ErrorVectorShape shape = defaults;
   // The size grows by 4 per node with every extra switch: search K upward.
   for (shape.switches = 0;; ++shape.switches) {
     const int n = ErrorVectorLayout(task, strategy, shape).size();
     if (n == size) return shape;
-    if (n > size || strategy.nodes.empty())
-      throw std::invalid_argument(
-          "an error vector of " + std::to_string(size) + " entries fits no switch " + "count for strategy '" +
-          strategy.name + "' (" +
-          std::to_string(
-              ErrorVectorLayout(task, strategy, default_error_shape(position_form, damper_speed_per_scale))
-                  .size()) +
-          " entries with 3 switches per motion)");
+    if (n > size || strategy.nodes.empty()) break;
   }
+  throw std::invalid_argument("an error vector of " + std::to_string(size) +
+                              " entries fits no switch count for strategy '" + strategy.name + "' (" +
+                              std::to_string(ErrorVectorLayout(task, strategy, defaults).size()) +
+                              " entries with " + std::to_string(defaults.switches) + " switches per motion)");
 }
 
 ErrorVectorLayout::ErrorVectorLayout(const Task& task, const Strategy& strategy,

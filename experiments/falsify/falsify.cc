@@ -6,6 +6,7 @@
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <span>
 #include <sstream>
 
 #include "experiments/falsify/robustness.h"
@@ -201,7 +202,7 @@ std::vector<PieceCoverage> measured_pieces(const Context& c) {
 }
 
 // Marks the pieces an end of `rollouts` lies in, as reached by `how`; keeps each piece's closest end.
-void mark_reached(const Context& c, const std::vector<RolloutOutcome>& rollouts, const std::string& how,
+void mark_reached(const Context& c, std::span<const RolloutOutcome> rollouts, const std::string& how,
                   std::vector<PieceCoverage>* pieces) {
   for (const RolloutOutcome& ro : rollouts) {
     const Observed o = observe(c, ro);
@@ -249,9 +250,7 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
     r->rollouts += cem.evaluations;
     pc.rollouts = cem.evaluations;
     spent += cem.evaluations;
-    mark_reached(c,
-                 std::vector<RolloutOutcome>(all->begin() + static_cast<std::ptrdiff_t>(first), all->end()),
-                 "coverage", &r->pieces);
+    mark_reached(c, std::span<const RolloutOutcome>(*all).subspan(first), "coverage", &r->pieces);
   }
 }
 
