@@ -6,7 +6,7 @@ packages=(
   libmujoco-dev libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libpng-dev
   libbenchmark-dev libgtest-dev libgmock-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtbb-dev libsqlite3-dev libfmt-dev
+  libpolyclipping-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtbb-dev libsqlite3-dev libfmt-dev
   libopenmpi-dev openmpi-bin
   libjs-three chromium  # the 3-D pages (cmt view, cmt report) and their browser test
 )

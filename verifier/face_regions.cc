@@ -195,7 +195,7 @@ bool clip_segment(const Points2& convex, const Point2& a, const Point2& b, FT* t
 
 Polygon2 to_polygon(const Points2& convex_ccw) { return Polygon2(convex_ccw.begin(), convex_ccw.end()); }
 
-std::vector<Points2> convex_pieces(const PolygonSet2& set) {
+std::vector<Points2> convex_pieces(const ChartRegion& set) {
   std::vector<PolygonWithHoles2> pwhs;
   set.polygons_with_holes(std::back_inserter(pwhs));
   std::vector<Points2> out;
@@ -213,38 +213,27 @@ std::vector<Points2> convex_pieces(const PolygonSet2& set) {
   return out;
 }
 
-PolygonSet2 union_of(std::vector<PolygonSet2> sets) {
-  if (sets.empty()) return PolygonSet2();
-  while (sets.size() > 1) {
-    std::vector<PolygonSet2> next;
-    next.reserve((sets.size() + 1) / 2);
-    for (std::size_t i = 0; i + 1 < sets.size(); i += 2) {
-      sets[i].join(sets[i + 1]);
-      next.push_back(std::move(sets[i]));
-    }
-    if (sets.size() % 2 == 1) next.push_back(std::move(sets.back()));
-    sets = std::move(next);
-  }
-  return std::move(sets.front());
+ChartRegion union_of(std::vector<ChartRegion> sets) {
+  std::vector<const ChartRegion*> parts;
+  parts.reserve(sets.size());
+  for (const ChartRegion& r : sets) parts.push_back(&r);
+  return ChartRegion::union_of(parts);
 }
 
-PolygonSet2 union_of(const std::vector<Polygon2>& polygons) {
-  return union_of(std::vector<PolygonSet2>(polygons.begin(), polygons.end()));
+ChartRegion union_of(const std::vector<Polygon2>& polygons, double cell) {
+  std::vector<ChartRegion> sets;
+  sets.reserve(polygons.size());
+  for (const Polygon2& p : polygons) sets.emplace_back(p, cell);
+  return union_of(std::move(sets));
 }
 
-PolygonSet2 union_of(const std::vector<PolygonWithHoles2>& polygons) {
-  return union_of(std::vector<PolygonSet2>(polygons.begin(), polygons.end()));
+ChartRegion union_of(const std::vector<PolygonWithHoles2>& polygons, double cell) {
+  std::vector<ChartRegion> sets;
+  sets.reserve(polygons.size());
+  for (const PolygonWithHoles2& p : polygons) sets.emplace_back(p, cell);
+  return union_of(std::move(sets));
 }
 
-double area(const PolygonSet2& set) {
-  std::vector<PolygonWithHoles2> pwhs;
-  set.polygons_with_holes(std::back_inserter(pwhs));
-  double total = 0;
-  for (const PolygonWithHoles2& pwh : pwhs) {
-    total += std::abs(CGAL::to_double(pwh.outer_boundary().area()));
-    for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) total -= std::abs(CGAL::to_double(h->area()));
-  }
-  return total;
-}
+double area(const ChartRegion& set) { return set.area(); }
 
 }  // namespace cmt::fp

@@ -105,7 +105,7 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
       hits.push_back(std::move(hit));
       continue;
     }
-    hit.region = PolygonSet2(to_polygon(section));
+    hit.region = ChartRegion(to_polygon(section), chart.cell);
     // Occluders: faces meeting the hull of the source and g (where every segment from X to g lies).
     Box corridor = src_box;
     for (const Vec3& p : c.faces()[gi].polygon) corridor.add(p);

@@ -133,13 +133,13 @@ class Projector {
 
  private:
   // ---- adding (only what is new becomes pending) ----
-  void add_region(int fi, const PolygonSet2& part) {
-    PolygonSet2 added;
+  void add_region(int fi, const ChartRegion& part) {
+    ChartRegion added;
     if (r_.add_region(fi, part, &added)) pend_region_[fi].join(added);
   }
   void add_convex(int fi, const Points2& pts) {
     if (pts.size() >= 3)
-      add_region(fi, PolygonSet2(to_polygon(pts)));
+      add_region(fi, ChartRegion(to_polygon(pts), r_.charts[fi].cell));
     else if (pts.size() == 2)
       add_segment(fi, pts[0], pts[1]);
     else if (pts.size() == 1)
@@ -166,8 +166,8 @@ class Projector {
   // ---- processing ----
   void process_face(int fi) {
     ++steps_;
-    const PolygonSet2 region = std::move(pend_region_[fi]);
-    pend_region_[fi] = PolygonSet2();
+    const ChartRegion region = std::move(pend_region_[fi]);
+    pend_region_[fi] = ChartRegion();
     std::vector<Points2> parts = convex_pieces(region);
     for (Points2& s : pend_seg_[fi]) parts.push_back(std::move(s));
     for (Points2& p : pend_pt_[fi]) parts.push_back(std::move(p));
@@ -192,7 +192,7 @@ class Projector {
     // A. Sliding (Buckley Alg 4.3): the swept wedge, clipped to the face.
     const Sweep& sw = sweeps_[fi];
     if (sw.whole) {
-      add_region(fi, PolygonSet2(to_polygon(r_.face_polygon[fi])));
+      add_region(fi, ChartRegion(to_polygon(r_.face_polygon[fi]), chart.cell));
     } else if (!sw.none) {
       const Vector2 bp = chart.project_direction(sw.far * sw.b_plus);
       const Vector2 bm = chart.project_direction(sw.far * sw.b_minus);
@@ -355,7 +355,7 @@ class Projector {
   std::vector<Sweep> sweeps_;
   std::map<int, int> lift_strips_;  // per edge: how often its lift strips were seeded
   FlightCone cone_;
-  std::vector<PolygonSet2> pend_region_;
+  std::vector<ChartRegion> pend_region_;
   std::vector<std::vector<Points2>> pend_seg_, pend_pt_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
   std::vector<char> pend_vertex_;

@@ -11,17 +11,17 @@
 
 namespace cmt {
 
+using fp::ChartRegion;
 using fp::FT;
 using fp::Point2;
 using fp::Points2;
-using fp::PolygonSet2;
 using fp::PolygonWithHoles2;
 
 namespace {
 
 // Is the segment inside the closed region? Exactly when both ends are and so is the midpoint of every piece
 // between its crossings with the region's boundary (each piece is then inside or outside as a whole).
-bool region_contains_segment(const PolygonSet2& region, const fp::Segment2& seg) {
+bool region_contains_segment(const ChartRegion& region, const fp::Segment2& seg) {
   const Point2 &a = seg.source(), &b = seg.target();
   if (region.oriented_side(a) == CGAL::ON_NEGATIVE_SIDE || region.oriented_side(b) == CGAL::ON_NEGATIVE_SIDE)
     return false;
@@ -59,6 +59,7 @@ bool region_contains_segment(const PolygonSet2& region, const fp::Segment2& seg)
 ReachedSet::Impl::Impl(const CSpace& c) : cspace(&c) {
   for (const Face& f : c.faces()) {
     charts.push_back(fp::make_chart(f));
+    charts.back().cell = region_cell(c.scale());
     Points2 pts;
     for (const Vec3& p : f.polygon) pts.push_back(charts.back().project(p));
     face_polygon.push_back(fp::convex_hull(pts));
@@ -68,11 +69,13 @@ ReachedSet::Impl::Impl(const CSpace& c) : cspace(&c) {
   vertices.assign(c.vertices().size(), 0);
 }
 
-bool ReachedSet::Impl::add_region(int fi, const PolygonSet2& part, PolygonSet2* added) {
-  PolygonSet2 diff = part;
+bool ReachedSet::Impl::add_region(int fi, const ChartRegion& part, ChartRegion* added) {
+  ChartRegion diff = part;
   diff.difference(faces[fi].region);
   if (diff.is_empty()) return false;
-  faces[fi].region.join(diff);
+  faces[fi].region.join(part);
+  // Growth no wider than a few grid cells is the region kernel's rounding, not reach: stored, not new.
+  if (!diff.wider_than(fp::kRegionGrowthCells)) return false;
   if (added) *added = std::move(diff);
   return true;
 }
@@ -167,7 +170,7 @@ void ReachedSet::add_whole_atom(int id) {
   const int k = c.atom_index(id);
   switch (c.atom_kind(id)) {
     case AtomKind::kFace: {
-      PolygonSet2 whole(fp::to_polygon(impl_->face_polygon[k]));
+      ChartRegion whole(fp::to_polygon(impl_->face_polygon[k]), impl_->charts[k].cell);
       impl_->add_region(k, whole, nullptr);
       break;
     }
@@ -186,7 +189,7 @@ void ReachedSet::add_face_polygon(int id, const std::vector<Vec3>& polygon) {
   for (const Vec3& p : polygon) pts.push_back(impl_->charts[k].project(p));
   pts = fp::convex_hull(pts);
   if (pts.size() >= 3)
-    impl_->add_region(k, PolygonSet2(fp::to_polygon(pts)), nullptr);
+    impl_->add_region(k, ChartRegion(fp::to_polygon(pts), impl_->charts[k].cell), nullptr);
   else if (pts.size() == 2)
     impl_->add_segment(k, pts[0], pts[1]);
   else if (pts.size() == 1)
@@ -331,7 +334,7 @@ bool ReachedSet::has_vertex(int id) const { return impl_->vertices[cspace().atom
 
 bool ReachedSet::face_region_contains(int id, const Vec3& p) const {
   const int k = cspace().atom_index(id);
-  const PolygonSet2& r = impl_->faces[k].region;
+  const ChartRegion& r = impl_->faces[k].region;
   return !r.is_empty() && r.oriented_side(impl_->charts[k].project(p)) != CGAL::ON_NEGATIVE_SIDE;
 }
 
@@ -344,7 +347,7 @@ std::vector<Vec3> lift_loop(const fp::Polygon2& poly, const fp::FaceChart& chart
   return out;
 }
 
-void region_pieces(const PolygonSet2& region, int atom, const fp::FaceChart& chart, double area_scale,
+void region_pieces(const ChartRegion& region, int atom, const fp::FaceChart& chart, double area_scale,
                    std::vector<ReachedPiece>* out) {
   std::vector<PolygonWithHoles2> pwhs;
   region.polygons_with_holes(std::back_inserter(pwhs));
@@ -539,7 +542,7 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
     const fp::FaceSet& fs = impl_->faces[fi];
     if (fs.empty()) continue;
     const fp::FaceChart& chart = impl_->charts[fi];
-    PolygonSet2 rest = fs.region;
+    ChartRegion rest = fs.region;
     rest.difference(container.impl_->faces[fi].region);  // exact containment per face
     if (rest.is_empty()) continue;
     // A remainder whose every convex piece lies within tol of one convex part of the container (a rounding
@@ -628,7 +631,7 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
       for (const Vec3& p : region.points) pts.push_back(chart.project(p));
       const Points2 part = fp::clip(fp::convex_hull(pts), rs.impl_->face_polygon[f.id]);
       if (part.size() >= 3)
-        rs.impl_->add_region(f.id, PolygonSet2(fp::to_polygon(part)), nullptr);
+        rs.impl_->add_region(f.id, ChartRegion(fp::to_polygon(part), rs.impl_->charts[f.id].cell), nullptr);
       else if (part.size() == 2)
         rs.impl_->add_segment(f.id, part[0], part[1]);
       else if (part.size() == 1)

@@ -1,8 +1,9 @@
 // A set of contact points on the C-space surface (Buckley ch. 4): the start of a motion, its forward
-// projection, its termination set. Per face: exact regions in the face's 2-D chart (regularized, closed)
-// plus 1-D and 0-D seeds (segments, points: a start segment lies in a face without area); per edge: closed
-// intervals of the parameter t in [0, 1] along a -> b; per vertex: a flag. Exact types (CGAL Epeck) stay in
-// the .cc files (verifier/internal/face_regions.h); this header is CGAL-free.
+// projection, its termination set. Per face: regions in the face's 2-D chart (closed, on the grid of
+// kRegionCell, rounded outward) plus 1-D and 0-D seeds (segments, points: a start segment lies in a face
+// without area); per edge: closed intervals of the parameter t in [0, 1] along a -> b; per vertex: a flag.
+// CGAL and Clipper types stay in the .cc files (verifier/internal/face_regions.h); this header is free of
+// them.
 #pragma once
 
 #include <memory>
@@ -11,6 +12,15 @@
 #include "models/loaded_task.h"
 
 namespace cmt {
+
+// The region kernel's grid (docs/verifier.md, "Region kernel"): face regions have vertices on multiples of
+// region_cell(scale) in chart coordinates (task units), 2^-36 of the scene scale rounded up to a power of
+// two. A polygon entering a region is rounded outward onto the grid, one subtracted inward; an overlay
+// rounds the crossings it creates to the nearest grid point (at most 0.71 cell). Chart coordinates beyond
+// kRegionRangeCells cells from the origin are a std::range_error (accepted tasks stay far inside).
+inline constexpr int kRegionCellBits = 36;
+inline constexpr double kRegionRangeCells = 0x1p60;
+double region_cell(double scale);
 
 struct EdgeInterval {
   double t0 = 0, t1 = 0;  // 0 <= t0 <= t1 <= 1, along edge a -> b
@@ -39,7 +49,7 @@ class ReachedSet {
   ReachedSet& operator=(ReachedSet&&) noexcept;
 
   // Locates a task region (start or goal) on the atoms it lies on, within LoadedTask::surface_tolerance():
-  // a point goes to CSpace::nearest_atom; a segment or polygon is clipped (exactly, in the chart) to every
+  // a point goes to CSpace::nearest_atom; a segment or polygon is clipped (in the chart) to every
   // face whose plane holds it and, for a segment, to every edge whose line holds it. The closure is added
   // (edge intervals and vertices covered by the face parts). In a planar task a region stands for its
   // extrusion across the y slab (a point becomes a segment along y, a segment a rectangle). Throws TaskError
@@ -68,18 +78,19 @@ class ReachedSet {
   ReachedSet restricted(const std::vector<bool>& keep) const;
 
   // The part of this set inside the closed axis box (verifier/reached_set_clip.cc): face regions, segments
-  // and points exactly (the face polygon clipped by the box's six planes in the face's chart); edge intervals
-  // in doubles rounded outward by kEdgeParamSlack; vertices by a double comparison. Where the box meets a
-  // face only in a segment or a point (its plane touches the box along an edge or at a corner), that whole
-  // contact is kept when the face holds anything: an over-approximation, as callers need (sensing
+  // and points by the face polygon clipped by the box's six planes in the face's chart (regions on the grid);
+  // edge intervals in doubles rounded outward by kEdgeParamSlack; vertices by a double comparison. Where the
+  // box meets a face only in a segment or a point (its plane touches the box along an edge or at a corner),
+  // that whole contact is kept when the face holds anything: an over-approximation, as callers need (sensing
   // termination, §4.5).
   ReachedSet within_box(const AxisBox& box) const;
   // This set less the part inside the closed axis box, never removing more than that part (the dual of
-  // within_box, for the points that surely pass a sensing test, Buckley Def 4.2): face regions exactly
-  // (regularized difference, so the box's boundary stays in), face segments and points exactly; edge
-  // intervals lose only the box's interval shrunk by kEdgeParamSlack where it cuts the edge (not at an edge
-  // end inside the box); vertices are removed by a
-  // double comparison, so callers pass a box already shrunk by a margin above rounding.
+  // within_box, for the points that surely pass a sensing test, Buckley Def 4.2): face regions by their
+  // difference on the grid (the box's polygon rounded outward: the remainder may lose up to 1.5 cells more
+  // than the box; callers pass a box shrunk by a margin far above that), face segments and points exactly;
+  // edge intervals lose only the box's interval shrunk by kEdgeParamSlack where it cuts the edge (not at an
+  // edge end inside the box); vertices are removed by a double comparison, so callers pass a box already
+  // shrunk by a margin above rounding.
   ReachedSet without_box(const AxisBox& box) const;
 
   bool empty() const;
@@ -89,7 +100,8 @@ class ReachedSet {
   double area() const;  // sum over faces
   std::vector<EdgeInterval> edge_intervals(int edge_atom) const;
   bool has_vertex(int vertex_atom) const;
-  // Is p (projected into the face's chart) in the closed region of the face (regions only, exact)?
+  // Is p (projected into the face's chart, rounded to the nearest grid point) in the closed region of the
+  // face (regions only)?
   bool face_region_contains(int face_atom, const Vec3& p) const;
   // Euclidean distance (task units) from p to the closed set: face regions (with holes), face segments and
   // points, edge intervals, vertices; +infinity when the set is empty. Floating point, for comparison with
@@ -97,9 +109,10 @@ class ReachedSet {
   double distance(const Vec3& p) const;
 
   std::vector<ReachedPiece> pieces() const;
-  // The pieces of this set not contained in `container`: face regions exactly (regularized difference, the
-  // remainder is reported); face segments/points, edge intervals and vertices within `tolerance` (task
-  // units) of the container's closed face regions, edge intervals or vertices count as contained.
+  // The pieces of this set not contained in `container`: face regions by their difference on the grid (a
+  // remainder within `tolerance` of the container's closed parts is contained, else it is reported); face
+  // segments/points, edge intervals and vertices within `tolerance` (task units) of the container's closed
+  // face regions, edge intervals or vertices count as contained.
   std::vector<ReachedPiece> pieces_outside(const ReachedSet& container, double tolerance) const;
 
   Impl& impl() { return *impl_; }

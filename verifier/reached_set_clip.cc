@@ -9,10 +9,10 @@
 
 namespace cmt {
 
+using fp::ChartRegion;
 using fp::FT;
 using fp::Point2;
 using fp::Points2;
-using fp::PolygonSet2;
 
 namespace {
 
@@ -80,7 +80,7 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
     const int f = static_cast<int>(fi);
     if (window.size() >= 3) {
       if (!fs.region.is_empty()) {
-        PolygonSet2 part = fs.region;
+        ChartRegion part = fs.region;
         part.intersection(fp::to_polygon(window));
         if (!part.is_empty()) o.add_region(f, part, nullptr);
       }
@@ -132,7 +132,7 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
     const int f = static_cast<int>(fi);
     const Points2 window = box_window(in, fi, planes);
     if (!fs.region.is_empty()) {
-      PolygonSet2 rest = fs.region;
+      ChartRegion rest = fs.region;
       // A window without area removes nothing from a regularized region.
       if (window.size() >= 3) rest.difference(fp::to_polygon(window));
       if (!rest.is_empty()) o.add_region(f, rest, nullptr);

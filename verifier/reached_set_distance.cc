@@ -18,7 +18,7 @@ namespace {
 
 // Distance from q (in the face's plane) to the boundary loops of a region: the nearest point of a closed
 // region to an outside point lies on its boundary, including the boundary of a hole that q is in.
-double distance_to_loops(const Vec3& q, const fp::PolygonSet2& region, const fp::FaceChart& chart) {
+double distance_to_loops(const Vec3& q, const fp::ChartRegion& region, const fp::FaceChart& chart) {
   std::vector<fp::PolygonWithHoles2> pwhs;
   region.polygons_with_holes(std::back_inserter(pwhs));
   double best = std::numeric_limits<double>::infinity();

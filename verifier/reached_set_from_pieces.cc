@@ -8,10 +8,10 @@ namespace cmt {
 
 namespace {
 
+using fp::ChartRegion;
 using fp::Point2;
 using fp::Points2;
 using fp::Polygon2;
-using fp::PolygonSet2;
 
 // A ring of 3-D points in a face's chart, counter-clockwise; empty when it has no area or, after the
 // rounding to doubles, is not simple.
@@ -27,16 +27,16 @@ Polygon2 chart_ring(const fp::FaceChart& chart, const std::vector<Vec3>& ring) {
 // The face region of a piece of 3+ points: its outer boundary minus its holes (pairwise overlays, so a hole
 // that touches the boundary after rounding is still a valid operand). Where rounding broke a ring, the
 // result stays a superset: an outer boundary becomes its convex hull, a hole is not subtracted.
-PolygonSet2 face_region(const fp::FaceChart& chart, const ReachedPiece& piece) {
+ChartRegion face_region(const fp::FaceChart& chart, const ReachedPiece& piece) {
   Polygon2 outer = chart_ring(chart, piece.polygon);
   if (outer.is_empty()) {
     Points2 pts;
     for (const Vec3& p : piece.polygon) pts.push_back(chart.project(p));
     const Points2 hull = fp::convex_hull(pts);
-    if (hull.size() < 3) return PolygonSet2();
+    if (hull.size() < 3) return ChartRegion();
     outer = fp::to_polygon(hull);
   }
-  PolygonSet2 region(outer);
+  ChartRegion region(outer, chart.cell);
   for (const std::vector<Vec3>& hole : piece.holes) {
     const Polygon2 h = chart_ring(chart, hole);
     if (!h.is_empty()) region.difference(h);

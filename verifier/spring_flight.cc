@@ -199,7 +199,7 @@ std::vector<FlightHit> spring_fly(const ReachedSet::Impl& g, const std::vector<P
       else if (!grown.empty() && lower.empty())
         lower = grown;
     }
-    const PolygonSet2 region = union_of(layer_polygons);
+    const ChartRegion region = union_of(layer_polygons, chart.cell);
     if (region.is_empty() && lower.empty()) continue;
     FlightHit hit;
     hit.face = static_cast<int>(gi);

@@ -74,12 +74,18 @@ class SpringProjector {
       const double weak_radius = slow_radius_ > 0 ? face_sticking_radii(f, p_, u_weak).weak : rad.weak;
       centers_.push_back(rad.center);
       depth_.push_back(f.offset - f.normal.dot(p_));
-      PolygonSet2 strong;
+      ChartRegion strong;
       Points2 strong_poly;
       if (rad.strong > 0) {
-        const Points2 s = clip(chart_disk(r_, fi, rad.center, rad.strong, false), r_.face_polygon[fi]);
+        // Pulled in by 4 grid cells (2 in the chart after its projection's shrink of up to 1/sqrt 3), more
+        // than the region's outward rounding of what is subtracted.
+        const double pull_in = 4 * r_.charts[fi].cell;
+        const Points2 s =
+            rad.strong > pull_in
+                ? clip(chart_disk(r_, fi, rad.center, rad.strong - pull_in, false), r_.face_polygon[fi])
+                : Points2{};
         if (s.size() >= 3) {
-          strong = PolygonSet2(to_polygon(s));
+          strong = ChartRegion(to_polygon(s), r_.charts[fi].cell);
           strong_poly = s;
         }
       }
@@ -190,8 +196,8 @@ class SpringProjector {
     last_step[i] = steps_;
     return ++count[i];
   }
-  void add_reached_region(int fi, const PolygonSet2& part) {
-    PolygonSet2 added;
+  void add_reached_region(int fi, const ChartRegion& part) {
+    ChartRegion added;
     if (!r_.add_region(fi, part, &added)) return;
     pend_new_[fi].join(added);
     const int rounds = grew_this_round(face_growths_, face_growth_step_, fi);
@@ -207,26 +213,26 @@ class SpringProjector {
             convex_hull(Points2(c.outer_boundary().vertices_begin(), c.outer_boundary().vertices_end()));
         if (hull.size() >= 3) hulls.push_back(to_polygon(hull));
       }
-      const PolygonSet2 filled = union_of(hulls);
+      const ChartRegion filled = union_of(hulls, r_.charts[fi].cell);
       if (!filled.is_empty()) add_reached_region(fi, filled);
     } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole face (a superset)
       // The velocity model bounds every point of the motion by the reach ball: the face's part inside it.
       const Points2 whole =
           model_ == SpringModel::kVelocity ? velocity_reach_section(r_, fi, vm_) : r_.face_polygon[fi];
-      if (whole.size() >= 3) add_reached_region(fi, PolygonSet2(to_polygon(whole)));
+      if (whole.size() >= 3) add_reached_region(fi, ChartRegion(to_polygon(whole), r_.charts[fi].cell));
     }
   }
   void add_reached_lower(int fi, const Points2& pts) {
     const bool fresh = pts.size() == 2 ? r_.add_segment(fi, pts[0], pts[1]) : r_.add_point(fi, pts[0]);
     if (fresh) pend_new_lower_[fi].push_back(pts);
   }
-  void add_entry_region(int fi, const PolygonSet2& part) {
+  void add_entry_region(int fi, const ChartRegion& part) {
     add_reached_region(fi, part);
-    PolygonSet2 fresh = part;
+    ChartRegion fresh = part;
     fresh.difference(entered_[fi]);
     if (fresh.is_empty()) return;
-    entered_[fi].join(fresh);
-    pend_entry_[fi].join(fresh);
+    entered_[fi].join(part);
+    if (fresh.wider_than(kRegionGrowthCells)) pend_entry_[fi].join(fresh);
   }
   void add_entry_lower(int fi, const Points2& pts) {
     if (pts.empty()) return;
@@ -354,12 +360,12 @@ class SpringProjector {
   double no_leave_radius(int fi) const { return std::max(0.0, (depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
   // The part of the face inside a polygon inscribed in that disk, shrunk by the decision margin (what is
   // subtracted is inside the open disk: sound).
-  PolygonSet2 inner_disk_set(int fi, const Vec3& center, double radius) const {
-    if (!std::isfinite(radius)) return PolygonSet2(to_polygon(r_.face_polygon[fi]));
+  ChartRegion inner_disk_set(int fi, const Vec3& center, double radius) const {
+    if (!std::isfinite(radius)) return ChartRegion(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
     const double r = radius - kDecisionMargin * c_.scale();
-    if (r <= 0) return PolygonSet2();
+    if (r <= 0) return ChartRegion();
     const Points2 d = clip(chart_disk(r_, fi, center, r, false), r_.face_polygon[fi]);
-    return d.size() >= 3 ? PolygonSet2(to_polygon(d)) : PolygonSet2();
+    return d.size() >= 3 ? ChartRegion(to_polygon(d), r_.charts[fi].cell) : ChartRegion();
   }
   // The overshoot of a slide on face fi, in the face's plane (Fig 3.14): sliding trajectories from s stay in
   // the projection of the free-space cylinder about seg[s, p + eps_o u(s)], u(s) = (p − s) / |p − s|, whose
@@ -396,8 +402,8 @@ class SpringProjector {
   // hull (it contains the strips from each: same generators, larger hull), clipped to the face; the part
   // outside the no-slide disk is reached.
   void slide_entries(int fi) {
-    PolygonSet2 entry = std::move(pend_entry_[fi]);
-    pend_entry_[fi] = PolygonSet2();
+    ChartRegion entry = std::move(pend_entry_[fi]);
+    pend_entry_[fi] = ChartRegion();
     std::vector<Points2> lower = std::move(pend_entry_lower_[fi]);
     pend_entry_lower_[fi].clear();
     if (entry.is_empty() && lower.empty()) return;
@@ -410,17 +416,17 @@ class SpringProjector {
       for (const Points2& l : lower)
         if (!sticks_strongly(fi, l)) sources.push_back(l);
       // The slides are united in a balanced tree of overlays (union_of), not one after another.
-      std::vector<PolygonSet2> slid_parts;
+      std::vector<ChartRegion> slid_parts;
       for (const Points2& src : sources) {
         if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
         Points2 lower_out;
-        PolygonSet2 slid = velocity_slide(r_, fi, src, vm_, &lower_out);
+        ChartRegion slid = velocity_slide(r_, fi, src, vm_, &lower_out);
         if (!slid.is_empty())
           slid_parts.push_back(std::move(slid));
         else if (!lower_out.empty())
           add_reached_lower(fi, lower_out);
       }
-      PolygonSet2 slid_all = union_of(std::move(slid_parts));
+      ChartRegion slid_all = union_of(std::move(slid_parts));
       if (!slid_all.is_empty()) {
         slid_all.difference(no_slide_[fi]);
         add_reached_region(fi, slid_all);
@@ -439,7 +445,7 @@ class SpringProjector {
                                        in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {
       // The slide ends where the robot must leave the face: the strip outside the no-slide disk.
-      PolygonSet2 slid(to_polygon(strip));
+      ChartRegion slid(to_polygon(strip), r_.charts[fi].cell);
       slid.difference(no_slide_[fi]);
       add_reached_region(fi, slid);
     } else if (!strip.empty()) {
@@ -459,8 +465,8 @@ class SpringProjector {
   void process_new_parts(int fi) {
     const Face& face = c_.faces()[fi];
     const FaceChart& chart = r_.charts[fi];
-    PolygonSet2 fresh = std::move(pend_new_[fi]);
-    pend_new_[fi] = PolygonSet2();
+    ChartRegion fresh = std::move(pend_new_[fi]);
+    pend_new_[fi] = ChartRegion();
     std::vector<Points2> news = convex_pieces(fresh);
     for (Points2& l : pend_new_lower_[fi]) news.push_back(std::move(l));
     pend_new_lower_[fi].clear();
@@ -679,7 +685,7 @@ class SpringProjector {
     auto must_leave = [&](const Points2& l) { return r > 0 && max_dist(g, lifted(g, l)) < r; };
     const FaceSet& fs = r_.faces[g];
     if (!fs.region.is_empty()) {
-      PolygonSet2 sliding = fs.region;
+      ChartRegion sliding = fs.region;
       sliding.difference(strong_[g]);
       for (const Points2& piece : convex_pieces(sliding))
         if (!must_leave(piece)) return true;
@@ -717,7 +723,7 @@ class SpringProjector {
                               chart.project(Vec3(a + lift_ * d))}),
                  r_.face_polygon[f]);
         if (rect.size() >= 3)
-          add_entry_region(f, PolygonSet2(to_polygon(rect)));
+          add_entry_region(f, ChartRegion(to_polygon(rect), r_.charts[f].cell));
         else if (!rect.empty())
           add_entry_lower(f, rect);
       }
@@ -747,9 +753,9 @@ class SpringProjector {
       if (w.empty()) continue;
       const FaceSet& f = r_.faces[fi];
       if (!f.region.is_empty() && w.size() >= 3) {
-        PolygonSet2 part = f.region;
+        ChartRegion part = f.region;
         part.intersection(to_polygon(w));
-        PolygonSet2 added;
+        ChartRegion added;
         if (!part.is_empty()) t.add_region(fi, part, &added);
       }
       for (const Segment2& s : f.segments) {
@@ -798,13 +804,13 @@ class SpringProjector {
   int nf_ = 0, ne_ = 0, nv_ = 0;
   std::vector<Vec3> centers_;
   std::vector<double> depth_;
-  std::vector<PolygonSet2> strong_;
+  std::vector<ChartRegion> strong_;
   std::vector<Points2> strong_poly_;
-  std::vector<PolygonSet2> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
+  std::vector<ChartRegion> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
   std::vector<Points2> weak_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
   double slow_radius_ = 0;                     // slow_stop_radius (velocity model)
-  std::vector<PolygonSet2> pend_entry_, entered_, pend_new_;
+  std::vector<ChartRegion> pend_entry_, entered_, pend_new_;
   std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
   std::vector<char> pend_vertex_;

@@ -478,7 +478,7 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
   for (auto& [face, polys] : regions) {
     FlightHit hit;
     hit.face = face;
-    hit.region = union_of(polys);
+    hit.region = union_of(polys, g.charts[face].cell);
     out.push_back(std::move(hit));
   }
   for (auto& [face, lower] : lowers) {
@@ -514,7 +514,7 @@ SlidePlane slide_plane(const Face& face, const VelocitySpring& m) {
 }
 
 // The slide from one entry piece (file comment), before the direction-cone rule (slide_piece).
-PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2& part,
+ChartRegion slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2& part,
                                const VelocitySpring& m, Points2* lower) {
   const CSpace& c = *g.cspace;
   const Face& face = c.faces()[fi];
@@ -575,9 +575,9 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
   }
   if (tube.size() < 3) {
     *lower = tube;
-    return PolygonSet2();
+    return ChartRegion();
   }
-  PolygonSet2 out(to_polygon(tube));
+  ChartRegion out(to_polygon(tube), g.charts[fi].cell);
   if (dmin <= eps * (1 + 1e-6) + margin || mean.norm() == 0) return out;
   const Vec3 axis = mean.normalized();
   const Vec3 axis_perp = face.normal.cross(axis);
@@ -639,10 +639,10 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
       const Points2 bound = support_section(g, fi, {spiral}, /*in_plane=*/true);
       if (bound.size() < 3) {  // a segment or point (on the face): the whole slide
         *lower = bound;
-        return PolygonSet2();
+        return ChartRegion();
       }
-      PolygonSet2 tight = out;
-      tight.intersection(PolygonSet2(to_polygon(bound)));
+      ChartRegion tight = out;
+      tight.intersection(to_polygon(bound));
       if (!tight.is_empty()) out = std::move(tight);  // else a lower-dimensional meet: keep the tube (sound)
     }
   }
@@ -662,13 +662,13 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
       wedge_pts.push_back(q + chart.project_direction(far * dir));
     }
   }
-  PolygonSet2 allowed;
+  ChartRegion allowed;
   const Points2 wedge = clip(convex_hull(wedge_pts), g.face_polygon[fi]);
-  if (wedge.size() >= 3) allowed.join(to_polygon(wedge));
+  if (wedge.size() >= 3) allowed.join(to_polygon(wedge), g.charts[fi].cell);
   const Points2 inner =
       clip(minkowski_outward({c2}, disk_offsets(chart, face.normal, (d_w + eps) * (1 + kSlack) + margin)),
            g.face_polygon[fi]);
-  if (inner.size() >= 3) allowed.join(to_polygon(inner));
+  if (inner.size() >= 3) allowed.join(to_polygon(inner), g.charts[fi].cell);
   out.intersection(allowed);
   return out;
 }
@@ -683,8 +683,8 @@ PolygonSet2 slide_piece_bounds(const ReachedSet::Impl& g, int fi, const Points2&
 // alpha(m)). Candidates m: the outward normals of the face's boundary edges (a robot that must cross an edge
 // leaves the face there: from a source on that edge the cone meets the face only in the source) and the
 // mean direction from the source toward p'.
-PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points2& part,
-                                 const VelocitySpring& m, PolygonSet2 region, Points2* lower) {
+ChartRegion direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points2& part,
+                                 const VelocitySpring& m, ChartRegion region, Points2* lower) {
   const CSpace& c = *g.cspace;
   const Face& face = c.faces()[fi];
   const FaceChart& chart = g.charts[fi];
@@ -776,9 +776,9 @@ PolygonSet2 direction_cone_bound(const ReachedSet::Impl& g, int fi, const Points
 }
 
 // The slide from one entry piece: the bounds of slide_piece_bounds, then the direction cones.
-PolygonSet2 slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
+ChartRegion slide_piece(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
                         Points2* lower) {
-  PolygonSet2 out = slide_piece_bounds(g, fi, part, m, lower);
+  ChartRegion out = slide_piece_bounds(g, fi, part, m, lower);
   if (out.is_empty()) return out;
   return direction_cone_bound(g, fi, part, m, std::move(out), lower);
 }
@@ -789,7 +789,7 @@ Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const Velocity
   return support_section(g, fi, {ball_support(m.p, m.reach)}, false, &m.bounds);
 }
 
-PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
+ChartRegion velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& part, const VelocitySpring& m,
                            Points2* lower) {
   lower->clear();
   if (part.size() < 2) return slide_piece(g, fi, part, m, lower);  // segments are cut like polygons
@@ -837,7 +837,7 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
                      pts =
                          minkowski_outward(pts, disk_offsets(chart, face.normal, kSlack * g.cspace->scale()));
                    Points2 piece_lower;
-                   PolygonSet2 region = slide_piece(g, fi, pts, m, &piece_lower);
+                   ChartRegion region = slide_piece(g, fi, pts, m, &piece_lower);
                    if (!region.is_empty()) {
                      std::vector<PolygonWithHoles2> pwhs;
                      region.polygons_with_holes(std::back_inserter(pwhs));
@@ -846,7 +846,7 @@ PolygonSet2 velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
                      first_lower = piece_lower;
                    }
                  });
-  PolygonSet2 out = union_of(polys);
+  ChartRegion out = union_of(polys, g.charts[fi].cell);
   if (out.is_empty()) *lower = first_lower;
   return out;
 }

@@ -4,9 +4,9 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2.h>
-#include <CGAL/Polygon_set_2.h>
 #include <CGAL/Polygon_with_holes_2.h>
 
+#include <polyclipping/clipper.hpp>
 #include <vector>
 
 #include "models/cspace.h"
@@ -24,8 +24,53 @@ using Vector3 = Kernel::Vector_3;
 using Plane3 = Kernel::Plane_3;
 using Polygon2 = CGAL::Polygon_2<Kernel>;
 using PolygonWithHoles2 = CGAL::Polygon_with_holes_2<Kernel>;
-using PolygonSet2 = CGAL::Polygon_set_2<Kernel>;
 using Points2 = std::vector<Point2>;
+
+// A region whose new part is no wider than this many cells is rounding, not reach (docs/verifier.md,
+// "Region kernel").
+inline constexpr double kRegionGrowthCells = 4;
+
+// A closed region of a face chart (Buckley's reached and termination sets on a face): polygons with holes
+// on a grid of cell `cell` (region_cell of the scene scale, verifier/reached_set.h), overlaid by Clipper
+// (integer coordinates, exact predicates). A polygon enters rounded outward (the hull of the grid cells
+// around its vertices' interval bounds: it contains the exact polygon); an overlay rounds the crossings it
+// creates to the nearest grid point (at most 0.71 cell). A set subtracted from a reached set is therefore
+// up to 1.5 cells larger than computed: every such set is first shrunk by a margin of at least 1e-9 of the
+// scene scale (kDecisionMargin, kUmbraRelativeMargin, kSensingBoxRelativeSlack, the inscribed sticking disks'
+// pull-in), which is over 20 cells of 2^-35 scale. Operands of one operation share the grid
+// (std::logic_error otherwise); an empty region takes the grid of what joins it.
+class ChartRegion {
+ public:
+  ChartRegion() = default;
+  ChartRegion(const Polygon2& polygon, double cell);  // rounded outward
+  ChartRegion(const PolygonWithHoles2& polygon, double cell);
+  double cell() const { return cell_; }
+  void join(const ChartRegion& other);
+  void join(const Polygon2& polygon, double cell) { join(ChartRegion(polygon, cell)); }
+  void difference(const ChartRegion& other);
+  void difference(const Polygon2& polygon);  // the polygon rounded outward, as everywhere
+  void intersection(const ChartRegion& other);
+  void intersection(const Polygon2& polygon);  // the polygon rounded outward
+  bool is_empty() const { return paths_.empty(); }
+  // Closed membership (ON_NEGATIVE_SIDE: outside) of the grid point nearest to p.
+  CGAL::Oriented_side oriented_side(const Point2& p) const;
+  // Outer boundaries counter-clockwise, holes clockwise; vertices are grid points.
+  std::vector<PolygonWithHoles2> polygons_with_holes() const;
+  template <class Out>
+  void polygons_with_holes(Out out) const {
+    for (PolygonWithHoles2& p : polygons_with_holes()) *out++ = std::move(p);
+  }
+  double area() const;
+  // True when some part is wider than `cells` grid cells (what is left after eroding it by cells / 2).
+  bool wider_than(double cells) const;
+  // Every input at once (Clipper's union is robust for any number of inputs).
+  static ChartRegion union_of(const std::vector<const ChartRegion*>& parts);
+
+ private:
+  void overlay(ClipperLib::ClipType type, const ChartRegion& other);
+  double cell_ = 0;          // 0 while empty and never given a grid
+  ClipperLib::Paths paths_;  // outer boundaries positive (Clipper's Orientation), holes negative
+};
 
 inline Point3 exact(const Vec3& p) { return Point3(p.x(), p.y(), p.z()); }
 inline Vec3 to_vec(const Point3& p) {
@@ -39,6 +84,7 @@ inline FT coord(const Point3& p, int i) { return i == 0 ? p.x() : (i == 1 ? p.y(
 // double polygon, oriented by the face normal; lifting a chart point onto it is exact.
 struct FaceChart {
   int drop = 2, u = 0, v = 1;
+  double cell = 0;  // the region grid's cell (region_cell of the scene scale)
   Plane3 plane;
   bool flips = false;  // counter-clockwise in the chart is clockwise about the face normal
 
@@ -69,23 +115,17 @@ bool inside_closed(const Points2& convex, const Point2& p);
 bool clip_segment(const Points2& convex, const Point2& a, const Point2& b, FT* t0, FT* t1);
 Polygon2 to_polygon(const Points2& convex_ccw);
 // Convex pieces (triangles and larger) of a regularized set, from CGAL's triangulation decomposition.
-std::vector<Points2> convex_pieces(const PolygonSet2& set);
-double area(const PolygonSet2& set);
+std::vector<Points2> convex_pieces(const ChartRegion& set);
+double area(const ChartRegion& set);
 
-// The union of many regions by pairwise overlays in a balanced tree. Never CGAL's aggregated
-// Polygon_set_2::join(begin, end): CGAL 5.5 sweeps all inputs at once, and where edges of three or more
-// inputs overlap on one line (parts clipped to one face edge, pieces cut along one line) its overlap step
-// for curves with common ancestors (Surface_sweep_2_impl.h, the assertion at l.630 in a debug build) can
-// build a corrupt arrangement. Which runs hit it depends on the order of subcurve addresses: the result is
-// then non-simple and a later operation on it may crash. A pairwise overlay meets at most two overlapping
-// edges at a time (docs/verifier-speed.md, "Unions of many regions").
-PolygonSet2 union_of(std::vector<PolygonSet2> sets);
-PolygonSet2 union_of(const std::vector<Polygon2>& polygons);
-PolygonSet2 union_of(const std::vector<PolygonWithHoles2>& polygons);
+// The union of many regions in one Clipper overlay.
+ChartRegion union_of(std::vector<ChartRegion> sets);
+ChartRegion union_of(const std::vector<Polygon2>& polygons, double cell);
+ChartRegion union_of(const std::vector<PolygonWithHoles2>& polygons, double cell);
 
 // What one face holds.
 struct FaceSet {
-  PolygonSet2 region;
+  ChartRegion region;
   std::vector<Segment2> segments;  // not covered by the region
   std::vector<Point2> points;      // not covered by the region or a segment
   bool empty() const { return region.is_empty() && segments.empty() && points.empty(); }
@@ -104,8 +144,9 @@ struct ReachedSet::Impl {
   std::vector<char> vertices;                    // per vertex index
 
   explicit Impl(const CSpace& c);
-  // Each returns true when the set grew. Inputs are in the face's chart.
-  bool add_region(int face_index, const fp::PolygonSet2& part, fp::PolygonSet2* added);
+  // Each returns true when the set grew (add_region: by a part wider than kRegionGrowthCells, which it
+  // returns in `added`; narrower growth is stored all the same). Inputs are in the face's chart.
+  bool add_region(int face_index, const fp::ChartRegion& part, fp::ChartRegion* added);
   bool add_segment(int face_index, const fp::Point2& a, const fp::Point2& b);
   bool add_point(int face_index, const fp::Point2& p);
   // Returns the length (in t) of what was new, and the new sub-intervals.

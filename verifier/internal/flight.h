@@ -28,7 +28,7 @@ struct FlightSource {
 
 struct FlightHit {
   int face = -1;       // face index
-  PolygonSet2 region;  // reached region with umbras removed, when the section has area
+  ChartRegion region;  // reached region with umbras removed, when the section has area
   Points2 lower;       // otherwise the section: a segment (2 points) or a point (1)
 };
 

@@ -78,7 +78,7 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std:
 // wedge ∪ the disk d <= d_w) ∩ the reach bound, per piece (a part within 2 eps_s of p' is first cut by the
 // square of half-side 2 eps_s about p'). Returns the region (area) or, when it has none, fills `lower` with a
 // segment or point.
-PolygonSet2 velocity_slide(const ReachedSet::Impl& geometry, int fi, const Points2& part,
+ChartRegion velocity_slide(const ReachedSet::Impl& geometry, int fi, const Points2& part,
                            const VelocitySpring& m, Points2* lower);
 
 }  // namespace cmt::fp
