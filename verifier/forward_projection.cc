@@ -22,6 +22,11 @@ using namespace fp;
 constexpr double kPi = std::numbers::pi;
 // Contact-lift strips seeded over an edge's reached intervals before the strip along the whole edge is taken.
 constexpr int kLiftStripRounds = 8;
+// Landing coasts that grew one face before its whole polygon is taken (coast_after_landing); rim coast
+// flights from one face over one edge before they start from the whole edge (coast_over_rims).
+constexpr int kCoastRounds = 24;
+// Relative slack on the servo coast's length (covers rounding of the sector's double corners).
+constexpr double kCoastRelativeSlack = 1e-9;
 
 // Step A's in-plane sweep on one face: none, the whole face, or the wedge W of directions b_minus..b_plus.
 struct Sweep {
@@ -69,10 +74,11 @@ Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
 class Projector {
  public:
   Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
-            double stop_relative_speed, double contact_lift)
+            double stop_relative_speed, double contact_lift, double servo_coast)
       : c_(lt.cspace),
         v_(v.normalized()),
         lift_(std::max(0.0, contact_lift)),
+        coast_(std::max(0.0, servo_coast) * (1 + kCoastRelativeSlack)),
         kappa_(std::max(0.0, stop_relative_speed)),
         theta_v_(lt.task.uncertainty.theta_v),
         reached_(start),
@@ -92,6 +98,10 @@ class Projector {
     }
     for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
     cone_ = flight_cone(v_, theta_v_, c_.scale());
+    for (int fi = 0; fi < nf_; ++fi) {
+      whole_face_.emplace_back(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
+      sweep_holds_cone_.push_back(cls_[fi] != StickClass::kMust && sweep_holds_cone(fi));
+    }
     pend_region_.resize(nf_);
     pend_seg_.resize(nf_);
     pend_pt_.resize(nf_);
@@ -133,23 +143,28 @@ class Projector {
 
  private:
   // ---- adding (only what is new becomes pending) ----
-  void add_region(int fi, const ChartRegion& part) {
+  // Each returns whether something new became pending.
+  bool add_region(int fi, const ChartRegion& part) {
     ChartRegion added;
-    if (r_.add_region(fi, part, &added)) pend_region_[fi].join(added);
+    if (!r_.add_region(fi, part, &added)) return false;
+    pend_region_[fi].join(added);
+    return true;
   }
-  void add_convex(int fi, const Points2& pts) {
-    if (pts.size() >= 3)
-      add_region(fi, ChartRegion(to_polygon(pts), r_.charts[fi].cell));
-    else if (pts.size() == 2)
-      add_segment(fi, pts[0], pts[1]);
-    else if (pts.size() == 1)
-      add_point(fi, pts[0]);
+  bool add_convex(int fi, const Points2& pts) {
+    if (pts.size() >= 3) return add_region(fi, ChartRegion(to_polygon(pts), r_.charts[fi].cell));
+    if (pts.size() == 2) return add_segment(fi, pts[0], pts[1]);
+    if (pts.size() == 1) return add_point(fi, pts[0]);
+    return false;
   }
-  void add_segment(int fi, const Point2& a, const Point2& b) {
-    if (r_.add_segment(fi, a, b)) pend_seg_[fi].push_back({a, b});
+  bool add_segment(int fi, const Point2& a, const Point2& b) {
+    if (!r_.add_segment(fi, a, b)) return false;
+    pend_seg_[fi].push_back({a, b});
+    return true;
   }
-  void add_point(int fi, const Point2& p) {
-    if (r_.add_point(fi, p)) pend_pt_[fi].push_back({p});
+  bool add_point(int fi, const Point2& p) {
+    if (!r_.add_point(fi, p)) return false;
+    pend_pt_[fi].push_back({p});
+    return true;
   }
   void add_interval(int ei, double t0, double t1) {
     std::vector<EdgeInterval> added;
@@ -189,6 +204,7 @@ class Projector {
           add_vertex(vid - nf_ - ne_);
     }
     if (cls_[fi] == StickClass::kMust) return;  // nothing slides or lifts off a must-stick face
+    if (coast_ > 0) coast_over_rims(fi, parts);
     // A. Sliding (Buckley Alg 4.3): the swept wedge, clipped to the face.
     const Sweep& sw = sweeps_[fi];
     if (sw.whole) {
@@ -254,12 +270,12 @@ class Projector {
         // front gives exactly that union.
         for (int f : e.faces) {
           src.keep_front = {r_.charts[f].plane};
-          absorb(fly(r_, src, cone_));
+          absorb(fly(r_, src, cone_), e.faces);
         }
         continue;
       }
       src.keep_front = keep;
-      absorb(fly(r_, src, cone_));
+      absorb(fly(r_, src, cone_), e.faces);
     }
   }
 
@@ -330,21 +346,156 @@ class Projector {
     for (int f : vx.faces) add_point(f, r_.charts[f].project(vx.point));
     FlightSource src;
     src.vertices = {exact(vx.point)};
-    absorb(fly(r_, src, cone_));
+    absorb(fly(r_, src, cone_), vx.faces);
   }
 
-  void absorb(const std::vector<FlightHit>& hits) {
+  // `no_coast`: the faces of the source edge or vertex, whose landings are not coasted; `departure`: the
+  // servo-coast displacements of the velocity the robot left a face with (a rim's coast sector), empty for
+  // flights that start from rest or at a first-order velocity (see coast_after_landing).
+  void absorb(const std::vector<FlightHit>& hits, const std::vector<int>& no_coast = {},
+              const std::vector<Vec3>& departure = {}) {
     for (const FlightHit& h : hits) {
       if (!h.region.is_empty())
         add_region(h.face, h.region);
       else
         add_convex(h.face, h.lower);
+      const bool adjacent = std::find(no_coast.begin(), no_coast.end(), h.face) != no_coast.end();
+      const bool swept = sweeps_[h.face].whole || (departure.empty() && sweep_holds_cone_[h.face]);
+      if (coast_ > 0 && !adjacent && !swept) coast_after_landing(h, departure);
     }
+  }
+
+  // Servo coast at an impact (docs/verifier.md "Servo coast"): the contact stops the normal velocity, but the
+  // tangential one decays with the servo's time constant tau, so the robot may move on by tau u_t along the
+  // face, u the velocity it lands with. In flight the velocity relaxes from the departure velocity toward
+  // the commanded cone, so u lies in the hull of the departure velocities and the cone's velocities (speed
+  // <= V): the landing region grows by tau times the projection of that hull onto the face (in the chart,
+  // which only shortens in-plane vectors), clipped to the face. Not coasted: a flight from an edge or vertex
+  // back onto one of its own faces (a robot leaving the edge for its face; coasting it would feed the edge a
+  // longer interval each round, and the fixpoint would creep along the edge). After kCoastRounds growing
+  // coasts on one face (coasts against the command can chain into cycles of landings), the whole face.
+  void coast_after_landing(const FlightHit& h, const std::vector<Vec3>& departure) {
+    const FaceChart& chart = r_.charts[h.face];
+    if (coast_rounds_[h.face] > kCoastRounds) {
+      add_region(h.face, whole_face_[h.face]);
+      return;
+    }
+    std::vector<Vec3> pattern;
+    for (const Vec3& ray : cone_.rays) pattern.push_back(coast_ * ray.normalized());
+    pattern.insert(pattern.end(), departure.begin(), departure.end());
+    bool grew = false;
+    if (!h.region.is_empty()) {
+      std::vector<std::pair<double, double>> chart_pattern;
+      for (const Vec3& d : pattern) {
+        const Vector2 q = chart.project_direction(d);
+        chart_pattern.emplace_back(CGAL::to_double(q.x()), CGAL::to_double(q.y()));
+      }
+      ChartRegion grown = h.region.minkowski_sum(chart_pattern);
+      grown.intersection(whole_face_[h.face]);
+      grew = add_region(h.face, grown);
+    } else {
+      Points2 pts;
+      for (const Point2& p : h.lower) {
+        pts.push_back(p);
+        for (const Vec3& d : pattern) pts.push_back(p + chart.project_direction(d));
+      }
+      grew = add_convex(h.face, clip(convex_hull(pts), r_.face_polygon[h.face]));
+    }
+    if (grew) ++coast_rounds_[h.face];
+  }
+
+  // Servo coast on leaving a face over a convex rim (docs/verifier.md "Servo coast"): free of contact, the
+  // velocity relaxes from the sliding velocity u (in the face's sweep wedge, |u| <= V) toward the commanded
+  // cone with time constant tau, so the position is p + a u + (a cone displacement), a in [0, tau]: the
+  // first-order flight from the prism rim segment + tau (wedge ∩ disk of radius V), lifted up to the contact
+  // lift (a hop may carry the robot over the rim that high). Free space at a convex edge is the union of the
+  // two faces' fronts, so one flight per front, as from the edge itself (process_edge). A rim interval is
+  // flown from once; when the coast's landings feed the rim a longer interval round after round (a robot
+  // that coasts along the rim, lands on the other face and reaches the edge again), the flights after
+  // kCoastRounds start from the whole edge.
+  void coast_over_rims(int fi, const std::vector<Points2>& parts) {
+    const Face& face = c_.faces()[fi];
+    const FaceChart& chart = r_.charts[fi];
+    for (int e : face.edges) {
+      const Edge& edge = c_.edges()[e - nf_];
+      if (edge.shape != EdgeShape::kConvex || edge.faces.size() != 2 || !slides_toward(fi, edge)) continue;
+      // One prism over the hull of the parts' rim intervals.
+      double s0 = 1, s1 = 0;
+      for (const Points2& part : parts) {
+        FT t0, t1;
+        if (!clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1)) continue;
+        s0 = std::min(s0, std::max(0.0, CGAL::to_interval(t0).first - kEdgeParamSlack));
+        s1 = std::max(s1, std::min(1.0, CGAL::to_interval(t1).second + kEdgeParamSlack));
+      }
+      if (s0 > s1) continue;
+      RimCoast& done = rim_coasts_[{fi, e}];
+      // Flown from already (growth within the parameter slack is rounding, as in add_interval).
+      if (done.rounds > 0 && done.s0 <= s0 + 4 * kEdgeParamSlack && s1 <= done.s1 + 4 * kEdgeParamSlack)
+        continue;
+      if (++done.rounds > kCoastRounds) s0 = 0, s1 = 1;
+      done.s0 = std::min(done.s0, s0);
+      done.s1 = std::max(done.s1, s1);
+      const Vec3 a = edge.a + s0 * (edge.b - edge.a), b = edge.a + s1 * (edge.b - edge.a);
+      FlightSource src;
+      src.face = fi;
+      const std::vector<Vec3> sector = coast_sector(fi, edge);
+      for (const Vec3& s : sector)
+        for (const Vec3& q : {a, b}) {
+          src.vertices.push_back(exact(Vec3(q + s)));
+          if (lift_ > 0) src.vertices.push_back(exact(Vec3(q + s + lift_ * face.normal)));
+        }
+      for (int g : edge.faces) {
+        src.keep_front = {r_.charts[g].plane};
+        absorb(fly(r_, src, cone_), {}, sector);
+      }
+    }
+  }
+
+  // The sweep wedge of face fi holds the tangential part of every cone velocity (so a face that is swept, not
+  // must-stick, covers the landing coast of a flight that left from rest: its sweep moves every reached point
+  // at least as far along each of those directions, clipped to the face alike).
+  bool sweep_holds_cone(int fi) const {
+    const Sweep& sw = sweeps_[fi];
+    if (sw.whole) return true;
+    if (sw.none) return false;
+    const Vec3& n = c_.faces()[fi].normal;
+    const Vec3 axis = (sw.b_plus + sw.b_minus).normalized();
+    const double cos_alpha = sw.b_plus.dot(axis);
+    for (const Vec3& ray : cone_.rays) {
+      const Vec3 t = ray - ray.dot(n) * n;
+      const double len = t.norm();
+      if (len <= 1e-12 * ray.norm()) continue;  // normal to the face: no tangential part
+      if (t.dot(axis) < (cos_alpha + 1e-9) * len) return false;
+    }
+    return true;
+  }
+
+  // The displacements tau u of the sliding velocities u on face fi that may carry it out over `edge`: the
+  // sweep wedge (or the whole plane) within radius coast_. Returned as three points (each becomes a vertex of
+  // the flight source, and a section costs the square of the source's generators). A wedge of half-angle
+  // alpha < pi/2: the triangle 0, R b_minus, R b_plus with R = r / cos alpha holds its sector of radius r
+  // (the chord of R b_minus, R b_plus lies at r along the axis, the sector's farthest reach). A whole sweep,
+  // or a wedge wider than 2 pi / 3 (R > 2r): only velocities in the outward half-disk leave over the edge,
+  // and it lies in the triangle -2r t, 2r t, 2r out (|x| + y <= 2r on it).
+  std::vector<Vec3> coast_sector(int fi, const Edge& edge) const {
+    const Face& face = c_.faces()[fi];
+    const Sweep& sw = sweeps_[fi];
+    const double r = coast_;
+    const Vec3 axis = sw.whole ? Vec3::Zero() : Vec3((sw.b_plus + sw.b_minus).normalized());
+    const double cos_alpha = sw.whole ? 0.0 : sw.b_plus.dot(axis);
+    if (cos_alpha < 0.5) {
+      const Vec3 t = (edge.b - edge.a).normalized();
+      Vec3 out = face.normal.cross(t);
+      if (out.dot(face_centroid(face) - edge.a) > 0) out = -out;
+      return {-2 * r * t, 2 * r * t, 2 * r * out};
+    }
+    return {Vec3::Zero(), (r / cos_alpha) * sw.b_minus, (r / cos_alpha) * sw.b_plus};
   }
 
   const CSpace& c_;
   Vec3 v_;
   double lift_;   // contact lift (task units)
+  double coast_;  // servo coast tau V (task units), with kCoastRelativeSlack
   double kappa_;  // the stop rule's relative speed
   double theta_v_;
   ReachedSet reached_;
@@ -353,8 +504,17 @@ class Projector {
   std::vector<StickClass> cls_;
   std::vector<bool> stops_;  // the atom may stop the motion: it may stick or slide slower than the stop rule
   std::vector<Sweep> sweeps_;
-  std::map<int, int> lift_strips_;  // per edge: how often its lift strips were seeded
+  std::map<int, int> lift_strips_;   // per edge: how often its lift strips were seeded
+  std::map<int, int> coast_rounds_;  // per face: how many landing coasts grew it
+  // Per (face, convex edge): the rim interval the coast flights started from, and how often they were flown.
+  struct RimCoast {
+    double s0 = 1, s1 = 0;
+    int rounds = 0;
+  };
+  std::map<std::pair<int, int>, RimCoast> rim_coasts_;
   FlightCone cone_;
+  std::vector<ChartRegion> whole_face_;  // per face: its polygon as a region
+  std::vector<bool> sweep_holds_cone_;   // per face: swept, and the sweep covers a landing's coast
   std::vector<ChartRegion> pend_region_;
   std::vector<std::vector<Points2>> pend_seg_, pend_pt_;
   std::vector<std::vector<EdgeInterval>> pend_edge_;
@@ -366,8 +526,8 @@ class Projector {
 
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
                                         const ReachedSet& start, const Vec3& v, double stop_relative_speed,
-                                        double contact_lift) {
-  return Projector(task, cones, start, v, stop_relative_speed, contact_lift).run();
+                                        double contact_lift, double servo_coast) {
+  return Projector(task, cones, start, v, stop_relative_speed, contact_lift, servo_coast).run();
 }
 
 }  // namespace cmt

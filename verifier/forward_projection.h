@@ -36,8 +36,13 @@ inline constexpr int kMaxFixpointSteps = 200000;
 // `contact_lift` (>= 0, task units, VerifyOptions::contact_lift): a robot at a reached concave edge may touch
 // either adjacent face anywhere within that distance of the reached interval (it rose off the other face
 // while sliding); that band of each face is reached too. 0: first-order contact.
+// `servo_coast` (>= 0, task units, VerifyOptions::servo_coast): tau V, how far the servo's lag may carry the
+// robot on at an impact (every landing region grows by it along its face) and past a convex rim it slides
+// over (flights start from the rim swept by the sliding directions that far, lifted by contact_lift).
+// 0: first-order velocity changes.
 DamperProjection forward_project_damper(const LoadedTask& task, const AtomCones& cones,
                                         const ReachedSet& start, const Vec3& v,
-                                        double stop_relative_speed = 0, double contact_lift = 0);
+                                        double stop_relative_speed = 0, double contact_lift = 0,
+                                        double servo_coast = 0);
 
 }  // namespace cmt

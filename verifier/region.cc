@@ -220,6 +220,28 @@ bool ChartRegion::wider_than(double cells) const {
   return !eroded.empty();
 }
 
+ChartRegion ChartRegion::minkowski_sum(const std::vector<std::pair<double, double>>& pattern) const {
+  if (is_empty() || pattern.empty()) return *this;
+  const Grid grid{cell_};
+  // The pattern's hull rounded outward: the hull of the grid cells around its vertices (and the origin).
+  Path corners = {{0, 0}};
+  for (const auto& [x, y] : pattern) {
+    const double gx = grid.to_grid(x), gy = grid.to_grid(y);
+    for (double cx : {std::floor(gx), std::ceil(gx)})
+      for (double cy : {std::floor(gy), std::ceil(gy)})
+        corners.push_back({static_cast<cInt>(cx), static_cast<cInt>(cy)});
+  }
+  Path hull = int_hull(std::move(corners));
+  if (hull.empty()) return *this;
+  ChartRegion out;
+  out.cell_ = cell_;
+  // Clipper's closed Minkowski sum: the region moved by the pattern's first vertex, united with the
+  // boundary swept by the pattern (holes shrink as they should).
+  ClipperLib::MinkowskiSum(hull, paths_, out.paths_, true);
+  out.join(*this);
+  return out;
+}
+
 ChartRegion ChartRegion::union_of(const std::vector<const ChartRegion*>& parts) {
   ChartRegion out;
   ClipperLib::Clipper clipper;

@@ -31,7 +31,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
   } else {
     DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed,
-                                                options.contact_lift);
+                                                options.contact_lift, options.servo_coast);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.slide_forever = std::move(p.slide_forever);
@@ -63,6 +63,7 @@ class StrategyVerifier {
     out_.spring_model = options.spring_model;
     out_.stop_relative_speed = options.stop_relative_speed;
     out_.contact_lift = options.contact_lift;
+    out_.servo_coast = options.servo_coast;
   }
 
   VerifyResult run() {

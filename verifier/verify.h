@@ -72,6 +72,7 @@ struct VerifyResult {
   SpringModel spring_model = SpringModel::kViaPoint;  // the model the spring motions were simulated with
   double stop_relative_speed = 0;                     // VerifyOptions::stop_relative_speed used
   double contact_lift = 0;                            // VerifyOptions::contact_lift used
+  double servo_coast = 0;                             // VerifyOptions::servo_coast used
   std::vector<VerifyStep> steps;
   int failed_step = -1;  // index into steps, or -1
   std::string failure;   // why, when unreliable
@@ -109,6 +110,12 @@ struct VerifyOptions {
   // gains). Damper projections seed that band beside every reached concave edge. 0: Buckley's first-order
   // contact.
   double contact_lift = 0;
+  // tau V (task units): how far the servo's lag may carry a damper motion on, at an impact along the face it
+  // lands on and past a convex rim it slides over (docs/verifier.md "Servo coast"). The rollouts' servo
+  // m xddot = b (v_c - xdot) relaxes the velocity with time constant tau = m / b, so a velocity change the
+  // first-order model makes at once takes tau there; experiments/validation/verifier_model.h derives tau V
+  // from the scene. Spring motions ignore it. 0: Buckley's first-order model.
+  double servo_coast = 0;
 };
 
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.

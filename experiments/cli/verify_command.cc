@@ -48,7 +48,8 @@ nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strat
           {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
           {"spring_model", spring_model_name(options.spring_model)},
           {"stop_relative_speed", options.stop_relative_speed},
-          {"contact_lift", options.contact_lift}};
+          {"contact_lift", options.contact_lift},
+          {"servo_coast", options.servo_coast}};
 }
 
 void add_verify_command(CLI::App& app, CommandState& state) {
@@ -58,6 +59,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     SpringModel spring_model = SpringModel::kVelocity;
     double stop_relative_speed = kStopRelativeSpeed;
     double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
+    double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
     double time_limit = kDefaultVerifyTimeLimit;
   };
   auto options = std::make_shared<Options>();
@@ -87,6 +89,11 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                   "meet the other face that high); default: the rollouts' MuJoCo scene, (m/b) mu_max V "
                   "(docs/verifier.md \"Contact lift\"); 0 = Buckley's first-order contact")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--servo-coast", options->servo_coast,
+                  "how far (task units) the servo's lag may carry a damper on at an impact or past a rim it "
+                  "slides over; default: the rollouts' MuJoCo scene, (m/b) V (docs/verifier.md \"Servo "
+                  "coast\"); 0 = Buckley's first-order model")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--time-limit", options->time_limit,
                   "wall-clock seconds the verifier may run (default " +
                       std::to_string(kDefaultVerifyTimeLimit) +
@@ -105,7 +112,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     }
     const VerifyOptions verify_options{
         options->spring_model, options->stop_relative_speed,
-        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task)};
+        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task),
+        options->servo_coast >= 0 ? options->servo_coast : rollout_servo_coast(*task)};
     const nlohmann::json j = verify_json_within_time_limit(*task, strategy, verify_options,
                                                            options->time_limit, options->reached, start);
     if (j.contains("error")) {

@@ -112,7 +112,7 @@ nlohmann::json run_view(const ViewOptions& o, bool* reliable) {
   std::optional<Strategy> strategy;
   if (!strategy_name.empty()) strategy = task->task.strategy_named(strategy_name);
   if (strategy && verify.is_null()) {
-    const VerifyOptions options{SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(*task)};
+    const VerifyOptions options = rollout_verify_options(*task);
     verify = verify_json_within_time_limit(*task, *strategy, options, o.time_limit, false, start);
     if (verify.contains("error")) throw TaskError(o.task, "--strategy", verify["error"].get<std::string>());
   }

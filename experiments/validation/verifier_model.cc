@@ -24,11 +24,21 @@ double rollout_contact_lift(const LoadedTask& task) {
   return scene.robot_mass / scene.damping * mu_max * speed;
 }
 
+double rollout_servo_coast(const LoadedTask& task) {
+  const SimOptions sim;
+  return sim.scene.robot_mass / sim.scene.damping * sim.damper_speed_per_scale * task.cspace.scale();
+}
+
+VerifyOptions rollout_verify_options(const LoadedTask& task) {
+  return {SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(task), rollout_servo_coast(task)};
+}
+
 VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
                                   ControllerForm form) {
   VerifierModel m;
   m.task = task;
   m.contact_lift = rollout_contact_lift(*task);
+  m.servo_coast = rollout_servo_coast(*task);
   m.form = form;
   m.task_theta_v = task->task.uncertainty.theta_v;
   m.theta_f = task->task.uncertainty.theta_f;
@@ -87,6 +97,7 @@ nlohmann::json verifier_model_json(const VerifierModel& m) {
           {"spring_model", spring_model_name(m.spring_model)},
           {"stop_relative_speed", m.stop_relative_speed},
           {"contact_lift", m.contact_lift},
+          {"servo_coast", m.servo_coast},
           {"reason", m.reason}};
 }
 

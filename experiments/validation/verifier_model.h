@@ -60,6 +60,17 @@ double sensed_force_extra_angle(double theta_f, double servo_ratio = kAdmittance
 // say by how much).
 double rollout_contact_lift(const LoadedTask& task);
 
+// The servo coast of the rollouts' scene for a task (VerifyOptions::servo_coast, docs/verifier.md "Servo
+// coast"): free of contact the servo m xddot = b (v_c - xdot) relaxes the velocity toward the command with
+// time constant tau = m / b, so where the first-order model changes a damper's velocity at once (an impact,
+// leaving a face) the robot keeps its old one for about tau and moves on up to tau |xdot| <= tau V, V the
+// damper speed (SimOptions, a fraction of the scene scale per second).
+double rollout_servo_coast(const LoadedTask& task);
+
+// The options that model the rollouts' impedance-form scene: velocity springs, the rollouts' stop rule,
+// contact lift and servo coast of the scene.
+VerifyOptions rollout_verify_options(const LoadedTask& task);
+
 // What the verifier runs on for a controller form.
 struct VerifierModel {
   std::shared_ptr<const LoadedTask> task;  // the task itself, or a copy with uncertainty.theta_v widened
@@ -77,9 +88,13 @@ struct VerifierModel {
   double stop_relative_speed = kStopRelativeSpeed;
   // A robot sliding into a concave edge may meet the other face this far from it (rollout_contact_lift).
   double contact_lift = 0;
+  // How far the servo's lag may carry a damper on at an impact or past a rim (rollout_servo_coast).
+  double servo_coast = 0;
   std::string reason;  // in words, for the JSON
 
-  VerifyOptions verify_options() const { return {spring_model, stop_relative_speed, contact_lift}; }
+  VerifyOptions verify_options() const {
+    return {spring_model, stop_relative_speed, contact_lift, servo_coast};
+  }
 };
 
 // `task_yaml` is the text `task` was loaded from. For the admittance form with theta_f > 0 the text is
@@ -90,7 +105,7 @@ VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<
                                   ControllerForm form);
 
 // {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, contact_lift,
-// reason}.
+// servo_coast, reason}.
 nlohmann::json verifier_model_json(const VerifierModel& model);
 
 }  // namespace cmt

@@ -78,7 +78,8 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                         {"seconds", seconds},
                         {"spring_model", spring_model_name(r.spring_model)},
                         {"stop_relative_speed", r.stop_relative_speed},
-                        {"contact_lift", r.contact_lift}};
+                        {"contact_lift", r.contact_lift},
+                        {"servo_coast", r.servo_coast}};
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;

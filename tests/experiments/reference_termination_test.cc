@@ -74,7 +74,7 @@ TEST_P(ReferenceTermination, StoredSetsLieInsideTodaysAndTheVerdictHolds) {
       load_task((std::filesystem::path(CMT_SOURCE_DIR) / ref["task_file"].get<std::string>()).string());
   ASSERT_EQ(task->task.dimension, 3);
   const Strategy strategy = task->task.strategy_named(ref["strategy"].get<std::string>());
-  const VerifyOptions options{SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(*task)};
+  const VerifyOptions options = rollout_verify_options(*task);
   const VerifyResult now = verify_strategy(*task, strategy, options);
 
   const nlohmann::json& old = ref["verify"];

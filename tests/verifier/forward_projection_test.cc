@@ -45,6 +45,21 @@ Projected project(const std::string& yaml) {
 
 const std::string kRoom = "{min: [-5, -5, 0], max: [5, 5, 5]}";
 
+// The motion v from the scene's start with first-order contact and with the given contact lift and servo
+// coast (VerifyOptions).
+struct Compared {
+  std::shared_ptr<const LoadedTask> task;
+  DamperProjection plain, modelled;
+};
+Compared project_both(const std::string& yaml, const Vec3& v, double lift, double coast) {
+  auto task = load_task_from_string(yaml, "test");
+  const AtomCones cones(task->cspace);
+  const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
+  DamperProjection plain = forward_project_damper(*task, cones, start, v, 0, 0, 0);
+  DamperProjection modelled = forward_project_damper(*task, cones, start, v, 0, lift, coast);
+  return {task, std::move(plain), std::move(modelled)};
+}
+
 TEST(ForwardProjection, MustStickPointStartStaysPut) {
   // Floor z = 0, mu = .5 (phi = .4636), theta_v = .1, straight down: cone(-v, .1) is inside the floor's cone
   // (.1 < .4636), so the floor is must-stick: nothing slides, and no velocity leaves the floor (v.n = -1 <
@@ -243,16 +258,63 @@ namespace {
 // motion ends on the floor-wall edge only; with lift .01 the robot may meet the wall up to .01 above the edge
 // and stick there.
 TEST(ForwardProjection, ContactLiftSeedsTheWallStripAboveAConcaveEdge) {
-  const std::string yaml = scene(0.75, 0.1, "[]", kRoom, "[0, 0, 0]", "[0, 0.8, -0.6]");
-  auto task = load_task_from_string(yaml, "lift");
-  const AtomCones cones(task->cspace);
-  const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
-  const Vec3 v(0, 0.8, -0.6);
-  const DamperProjection plain = forward_project_damper(*task, cones, start, v, 0, 0);
-  const DamperProjection lifted = forward_project_damper(*task, cones, start, v, 0, 0.01);
+  const Compared r =
+      project_both(scene(0.75, 0.1, "[]", kRoom, "[0, 0, 0]", "[0, 0.8, -0.6]"), Vec3(0, 0.8, -0.6), 0.01, 0);
+  const DamperProjection& plain = r.plain;
+  const DamperProjection& lifted = r.modelled;
   EXPECT_GT(plain.termination.distance(Vec3(0, 5, 0.005)), 0.004);   // first-order contact: the edge only
   EXPECT_LE(lifted.termination.distance(Vec3(0, 5, 0.005)), 1e-9);   // inside the strip
   EXPECT_GE(lifted.termination.distance(Vec3(0, 5, 0.02)), 0.0099);  // above it: not reached
+}
+
+}  // namespace
+}  // namespace cmt
+
+namespace cmt {
+namespace {
+
+// Servo coast at an impact (VerifyOptions::servo_coast): from the floor of a room 5 high, mu = .5 (phi =
+// .4636), theta_v = .1, straight up. The ceiling (normal -z) holds the command (angle 0 < phi - theta_v):
+// must stick, so first-order landings stay where they land: the section of the flight cone at height 5,
+// between the disks of radius 5 tan(.1) = .5017 and .5017 / cos(pi/24) = .5060 (24 circumscribing rays). With
+// coast c = 1 each landing grows by c times the tangential part of the unit cone velocities: a polygon
+// between radius .0998 and .1007 (t = tan(.1) / cos(pi/24) = .1012, t / sqrt(1 + t^2) = .1007, times
+// cos(pi/24)). So the ceiling's termination reaches radius .59 (> .5060 + grid) with the coast only, and not
+// radius .62 (> .5060 + .1007).
+TEST(ForwardProjection, ServoCoastGrowsALandingAlongTheFaceItSticksOn) {
+  const Compared r =
+      project_both(scene(0.5, 0.1, "[]", kRoom, "[0, 0, 0]", "[0, 0, 1]"), Vec3(0, 0, 1), 0, 1.0);
+  const DamperProjection& plain = r.plain;
+  const DamperProjection& coasted = r.modelled;
+  EXPECT_LE(plain.termination.distance(Vec3(0.5, 0, 5)), 1e-9);
+  EXPECT_GT(plain.termination.distance(Vec3(0.59, 0, 5)), 0.08);
+  EXPECT_LE(coasted.termination.distance(Vec3(0.59, 0, 5)), 1e-9);
+  EXPECT_LE(coasted.termination.distance(Vec3(0, -0.59, 5)), 1e-9);
+  EXPECT_GT(coasted.termination.distance(Vec3(0.62, 0, 5)), 0.01);
+}
+
+// Servo coast past a convex rim: a 2 x 2 x 1 box on the floor, a room wall at x = 1.5 (normal -x), mu = .5
+// (phi = .4636), theta_v = .1, v = (cos .3, 0, -sin .3). On the box top the command is pi/2 - .3 = 1.2708
+// from -z, beyond phi + theta_v: the robot slides along +x (the wedge's axis) to the rim x = 1; v.n = -.2955
+// < -sin .1, so it cannot fly off before the rim. On the wall the command is .3 from the wall's -normal,
+// within phi - theta_v = .3636: must stick. First order, the flight from the rim (1, y, 1) crosses .5 to the
+// wall descending tan(.3 - .1012) = .2015 per unit at least (.1012: the 24 circumscribing rays' widest
+// angle), so it lands at most at z = 1 - .5 x .2015 = .8993. With coast c = .2 the robot keeps its sliding
+// velocity for up to c past the rim: flights start as far as (1.2, 0, 1) and land as high as z = 1 - .3 x
+// .2015 = .9396. The landing coast only moves down (every cone velocity descends) or along y, so nothing
+// above .9396 + grid.
+TEST(ForwardProjection, ServoCoastCarriesAFlightPastARim) {
+  const Vec3 v(0.955336489, 0, -0.295520207);
+  const Compared r = project_both(
+      scene(0.5, 0.1, "[{box: {min: [-1, -1, 0], max: [1, 1, 1]}}]", "{min: [-5, -5, 0], max: [1.5, 5, 5]}",
+            "[0.9, 0, 1]", "[0.955336489, 0, -0.295520207]"),
+      v, 0, 0.2);
+  const DamperProjection& plain = r.plain;
+  const DamperProjection& coasted = r.modelled;
+  EXPECT_LE(plain.termination.distance(Vec3(1.5, 0, 0.89)), 1e-9);
+  EXPECT_GT(plain.termination.distance(Vec3(1.5, 0, 0.92)), 0.015);
+  EXPECT_LE(coasted.termination.distance(Vec3(1.5, 0, 0.93)), 1e-9);
+  EXPECT_GT(coasted.termination.distance(Vec3(1.5, 0, 0.95)), 0.005);
 }
 
 }  // namespace

@@ -128,6 +128,28 @@ TEST(ChartRegion, DifferenceLeavesAHoleAndIntersectionTheOverlap) {
   EXPECT_DOUBLE_EQ(r.area(), 4.0);
 }
 
+// Minkowski sum with the triangle of the origin, (.1, 0) and (0, .1) (the servo coast's landing growth): the
+// unit square becomes the pentagon (0,0) (1.1,0) (1.1,1) (1,1.1) (0,1.1) of area 1.21 - .005 = 1.205; the
+// pattern is rounded outward (.1 is not a grid point), so up to a few cells more. A hole [1, 2]^2 in [0, 3]^2
+// keeps what no translate reaches, the intersection of the hole moved by every pattern vector: [1.1, 2]^2;
+// the ring's area becomes 3.1^2 - .005 - .9^2.
+TEST(ChartRegion, MinkowskiSumWithAPatternGrowsOuterBoundariesAndShrinksHoles) {
+  const std::vector<std::pair<double, double>> pattern = {{0.1, 0}, {0, 0.1}};
+  const ChartRegion sum = ChartRegion(box(0, 1), kCell).minkowski_sum(pattern);
+  EXPECT_GE(sum.area(), 1.205);
+  EXPECT_LE(sum.area(), 1.205 + 10 * kCell);
+  EXPECT_EQ(sum.oriented_side(Point2(1.04, 1.04)), CGAL::ON_POSITIVE_SIDE);
+  EXPECT_EQ(sum.oriented_side(Point2(1.06, 1.06)), CGAL::ON_NEGATIVE_SIDE);
+  EXPECT_EQ(sum.oriented_side(Point2(-0.01, 0.5)), CGAL::ON_NEGATIVE_SIDE);  // nothing moves toward -x
+  ChartRegion ring(box(0, 3, 0, 3), kCell);
+  ring.difference(box(1, 2, 1, 2));
+  const ChartRegion ring_sum = ring.minkowski_sum(pattern);
+  EXPECT_NEAR(ring_sum.area(), 3.1 * 3.1 - 0.005 - 0.9 * 0.9, 20 * kCell);
+  EXPECT_EQ(ring_sum.oriented_side(Point2(1.05, 1.5)), CGAL::ON_POSITIVE_SIDE);
+  EXPECT_EQ(ring_sum.oriented_side(Point2(1.5, 1.5)), CGAL::ON_NEGATIVE_SIDE);
+  EXPECT_EQ(ring_sum.oriented_side(Point2(1.95, 1.95)), CGAL::ON_NEGATIVE_SIDE);
+}
+
 // Random convex polygons with coordinates that are not grid points, against the exact polygon sets: the
 // kernel's union holds the exact one (every exact vertex inside) and exceeds it by at most a few cells along
 // the boundary.

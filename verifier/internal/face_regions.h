@@ -63,6 +63,9 @@ class ChartRegion {
   double area() const;
   // True when some part is wider than `cells` grid cells (what is left after eroding it by cells / 2).
   bool wider_than(double cells) const;
+  // Contains the Minkowski sum with the hull of the origin and `pattern` (chart vectors): the hull is
+  // rounded outward to the grid first.
+  ChartRegion minkowski_sum(const std::vector<std::pair<double, double>>& pattern) const;
   // Every input at once (Clipper's union is robust for any number of inputs).
   static ChartRegion union_of(const std::vector<const ChartRegion*>& parts);
 
