@@ -430,11 +430,13 @@ class Projector {
       if (s0 > s1) continue;
       RimCoast& done = rim_coasts_[{fi, e}];
       // Flown from already (growth within the parameter slack is rounding, as in add_interval).
-      if (done.rounds > 0 && done.s0 <= s0 + 4 * kEdgeParamSlack && s1 <= done.s1 + 4 * kEdgeParamSlack)
+      const double slack = 4 * kEdgeParamSlack;
+      if (std::any_of(done.flown.begin(), done.flown.end(), [&](const std::pair<double, double>& iv) {
+            return iv.first <= s0 + slack && s1 <= iv.second + slack;
+          }))
         continue;
       if (++done.rounds > kCoastRounds) s0 = 0, s1 = 1;
-      done.s0 = std::min(done.s0, s0);
-      done.s1 = std::max(done.s1, s1);
+      done.flown.emplace_back(s0, s1);
       const Vec3 a = edge.a + s0 * (edge.b - edge.a), b = edge.a + s1 * (edge.b - edge.a);
       FlightSource src;
       src.face = fi;
@@ -506,9 +508,9 @@ class Projector {
   std::vector<Sweep> sweeps_;
   std::map<int, int> lift_strips_;   // per edge: how often its lift strips were seeded
   std::map<int, int> coast_rounds_;  // per face: how many landing coasts grew it
-  // Per (face, convex edge): the rim interval the coast flights started from, and how often they were flown.
+  // Per (face, convex edge): the rim intervals the coast flights started from, and how often they were flown.
   struct RimCoast {
-    double s0 = 1, s1 = 0;
+    std::vector<std::pair<double, double>> flown;  // edge parameter intervals
     int rounds = 0;
   };
   std::map<std::pair<int, int>, RimCoast> rim_coasts_;
