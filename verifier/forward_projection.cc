@@ -98,6 +98,7 @@ class Projector {
     }
     for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
     cone_ = flight_cone(v_, theta_v_, c_.scale());
+    for (const Vec3& ray : cone_.rays) cone_coast_.push_back(coast_ * ray.normalized());
     for (int fi = 0; fi < nf_; ++fi) {
       whole_face_.emplace_back(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
       sweep_holds_cone_.push_back(cls_[fi] != StickClass::kMust && sweep_holds_cone(fi));
@@ -289,7 +290,6 @@ class Projector {
   // the edge; after kLiftStripRounds strips on an edge, the strip along the whole edge is taken at once.
   void add_lift_bands(int ei, const std::vector<EdgeInterval>& ivs) {
     const Edge& e = c_.edges()[ei];
-    const Vec3 t = (e.b - e.a).normalized();
     const bool whole = ++lift_strips_[ei] > kLiftStripRounds;
     for (int f : e.faces) {
       bool fed = false;
@@ -297,8 +297,7 @@ class Projector {
         if (g != f) fed = fed || slides_toward(g, e);
       if (!fed) continue;
       const Face& face = c_.faces()[f];
-      Vec3 d = face.normal.cross(t);
-      if (d.dot(face_centroid(face) - e.a) < 0) d = -d;
+      const Vec3 d = -outward_across(face, e);
       const FaceChart& chart = r_.charts[f];
       auto strip = [&](const Vec3& a, const Vec3& b) {
         const Points2 rect =
@@ -320,6 +319,12 @@ class Projector {
     return centroid;
   }
 
+  // The unit direction in `face` perpendicular to `edge`, pointing out of the face across the edge.
+  static Vec3 outward_across(const Face& face, const Edge& edge) {
+    Vec3 out = face.normal.cross(edge.b - edge.a).normalized();
+    return out.dot(face_centroid(face) - edge.a) > 0 ? Vec3(-out) : out;
+  }
+
   // Face g is reached and some sliding direction on it (its sweep wedge, tangential flights included) points
   // toward edge e.
   bool slides_toward(int g, const Edge& e) const {
@@ -327,8 +332,7 @@ class Projector {
     if (cls_[g] == StickClass::kMust || sw.none || r_.faces[g].empty()) return false;
     if (sw.whole) return true;
     const Face& face = c_.faces()[g];
-    Vec3 m = face.normal.cross(e.b - e.a);
-    if (m.dot(face_centroid(face) - e.a) > 0) m = -m;  // out of the face, toward the edge
+    const Vec3 m = outward_across(face, e);
     return sw.b_plus.dot(m) > 0 || sw.b_minus.dot(m) > 0;
   }
 
@@ -380,8 +384,7 @@ class Projector {
       add_region(h.face, whole_face_[h.face]);
       return;
     }
-    std::vector<Vec3> pattern;
-    for (const Vec3& ray : cone_.rays) pattern.push_back(coast_ * ray.normalized());
+    std::vector<Vec3> pattern = cone_coast_;
     pattern.insert(pattern.end(), departure.begin(), departure.end());
     bool grew = false;
     if (!h.region.is_empty()) {
@@ -487,8 +490,7 @@ class Projector {
     const double cos_alpha = sw.whole ? 0.0 : sw.b_plus.dot(axis);
     if (cos_alpha < 0.5) {
       const Vec3 t = (edge.b - edge.a).normalized();
-      Vec3 out = face.normal.cross(t);
-      if (out.dot(face_centroid(face) - edge.a) > 0) out = -out;
+      const Vec3 out = outward_across(face, edge);
       return {-2 * r * t, 2 * r * t, 2 * r * out};
     }
     return {Vec3::Zero(), (r / cos_alpha) * sw.b_minus, (r / cos_alpha) * sw.b_plus};
@@ -515,6 +517,7 @@ class Projector {
   };
   std::map<std::pair<int, int>, RimCoast> rim_coasts_;
   FlightCone cone_;
+  std::vector<Vec3> cone_coast_;  // coast_ along each cone ray: the coast of a landing at a cone velocity
   std::vector<ChartRegion> whole_face_;  // per face: its polygon as a region
   std::vector<bool> sweep_holds_cone_;   // per face: swept, and the sweep covers a landing's coast
   std::vector<ChartRegion> pend_region_;
