@@ -3,10 +3,17 @@
 // occluding face h, g ∩ umbra_h(X) with umbra_h(X) = ∩_{x ∈ vertices(X)} Shadow_x(h).
 //
 // Section. With the cone truncated at length `far` (rays have v-component 1, so any displacement d of length
-// <= scene scale is a combination of rays with coefficients summing to <= scale), Q = conv(X ∪ {x + far r})
-// equals conv(X) + cone(C) inside the scene. The section of a polytope by a plane is the hull of its
-// generators on the plane and of the crossings of every generator pair on opposite sides: all exact (Epeck).
+// <= scene scale is a combination of rays with coefficients summing to <= scale), Q = conv(X) ⊕ S with
+// S = conv({0} ∪ far R) equals conv(X) + cone(C) inside the scene. The section of a polytope by a plane is
+// the hull of the crossings of its edges, and every edge of a Minkowski sum is a vertex of one summand plus
+// an edge of the other: (x_i, x_j) + s_k for every source pair and S vertex, x_i + (0, far r_k) and x_i +
+// (far r_k, far r_k+1). Those crossings are computed in doubles with interval bounds on the signs
+// (section_in_doubles); a section thinner than a few thousand roundings is recomputed exactly (Epeck) from
+// every generator pair, so a segment or point stays one.
 #include "verifier/internal/flight.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +45,134 @@ HalfPlane2 shrunk(const HalfPlane2& h, double margin) {
 
 bool same_plane(const Plane3& a, const Plane3& b) { return a == b || a == b.opposite(); }
 
+using Inexact = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// Plane a x + b y + c z + d in doubles, with a bound on the error of its value at a point computed in
+// doubles.
+struct PlaneDouble {
+  double a, b, c, d;
+  explicit PlaneDouble(const Plane3& p)
+      : a(CGAL::to_double(p.a())),
+        b(CGAL::to_double(p.b())),
+        c(CGAL::to_double(p.c())),
+        d(CGAL::to_double(p.d())) {}
+  double value(const Vec3& x) const { return a * x.x() + b * x.y() + c * x.z() + d; }
+  double error(const Vec3& x) const {
+    return kFlightSectionRelativeError *
+           (std::abs(a * x.x()) + std::abs(b * x.y()) + std::abs(c * x.z()) + std::abs(d));
+  }
+};
+
+// Parameters t in [0, 1] at which (1 - t) D_p + t D_q can vanish for some D_p in [lo_p, hi_p], D_q in
+// [lo_q, hi_q]: {t : (1 - t) lo_p + t lo_q <= 0 <= (1 - t) hi_p + t hi_q}. False when there are none.
+bool crossing_interval(double lo_p, double hi_p, double lo_q, double hi_q, double* t0, double* t1) {
+  double lo = 0, hi = 1;
+  // f(t) = lo_p + t (lo_q - lo_p) <= 0 and g(t) = hi_p + t (hi_q - hi_p) >= 0, each a half-line in t.
+  auto keep = [&](double at0, double slope, bool want_nonpositive) {
+    const double sign = want_nonpositive ? 1 : -1;  // keep sign * (at0 + slope t) <= 0
+    const double a0 = sign * at0, s = sign * slope;
+    if (s == 0) {
+      if (a0 > 0) hi = -1;
+      return;
+    }
+    const double root = -a0 / s;
+    if (s > 0)
+      hi = std::min(hi, root);
+    else
+      lo = std::max(lo, root);
+  };
+  keep(lo_p, lo_q - lo_p, true);
+  keep(hi_p, hi_q - hi_p, false);
+  if (lo > hi) return false;
+  *t0 = lo;
+  *t1 = hi;
+  return true;
+}
+
 }  // namespace
+
+// The section of Q = conv(x_i) ⊕ conv(s_k) (s_0 = 0, s_k = far r_k on a ring) by `plane`, in the chart, from
+// the crossings of Q's Minkowski edges. Each generator's plane value carries an error bound; for every edge
+// the parameters where the true value can vanish form an interval [t0, t1], and both ends enter the hull (the
+// true crossing projects between them: the chart projection is linear). The hull is grown by
+// kFlightSectionRelativeError x the largest coordinate against rounding of the points. Returns false when no
+// edge can cross; sets *thin when the hull is degenerate or narrower than kFlightThinSection of that size, or
+// when that growth exceeds half a region cell: the caller then takes the exact section.
+bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, const FaceChart& chart,
+                        Points2* out, bool* thin) {
+  const PlaneDouble plane(chart.plane);
+  const std::size_t nx = x.size(), ns = s.size();
+  std::vector<Vec3> gen(nx * ns);
+  std::vector<double> lo(gen.size()), hi(gen.size());
+  double big = 0;
+  for (std::size_t i = 0; i < nx; ++i)
+    for (std::size_t k = 0; k < ns; ++k) {
+      const std::size_t at = i * ns + k;
+      gen[at] = x[i] + s[k];
+      const double v = plane.value(gen[at]), e = plane.error(gen[at]) + plane.error(x[i]) + plane.error(s[k]);
+      lo[at] = v - e;
+      hi[at] = v + e;
+      big = std::max(big, gen[at].cwiseAbs().maxCoeff());
+    }
+  std::vector<Inexact::Point_2> pts;
+  auto edge = [&](std::size_t p, std::size_t q) {
+    if ((lo[p] > 0 && lo[q] > 0) || (hi[p] < 0 && hi[q] < 0)) return;
+    double t0, t1;
+    if (!crossing_interval(lo[p], hi[p], lo[q], hi[q], &t0, &t1)) return;
+    for (const double t : {t0, t1}) {
+      const Vec3 y = gen[p] + t * (gen[q] - gen[p]);
+      pts.emplace_back(y[chart.u], y[chart.v]);
+    }
+  };
+  for (std::size_t k = 0; k < ns; ++k)
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t j = i + 1; j < nx; ++j) edge(i * ns + k, j * ns + k);
+  for (std::size_t i = 0; i < nx; ++i)
+    for (std::size_t k = 1; k < ns; ++k) {
+      edge(i * ns, i * ns + k);
+      edge(i * ns + k, i * ns + (k + 1 < ns ? k + 1 : 1));
+    }
+  if (pts.empty()) return false;
+  const double pad = kFlightSectionRelativeError * (1 + big);
+  if (pad > 0.5 * chart.cell) {
+    *thin = true;
+    return true;
+  }
+  std::vector<Inexact::Point_2> hull, grown;
+  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+  double area2 = 0, diameter = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const auto& p = hull[i];
+    const auto& q = hull[(i + 1) % hull.size()];
+    area2 += p.x() * q.y() - q.x() * p.y();
+    for (const auto& r : hull) diameter = std::max(diameter, std::hypot(r.x() - p.x(), r.y() - p.y()));
+  }
+  *thin = hull.size() < 3 || area2 <= kFlightThinSection * pad * diameter;
+  if (*thin) return true;
+  for (const auto& h : hull)
+    for (const double dx : {-pad, pad})
+      for (const double dy : {-pad, pad}) grown.emplace_back(h.x() + dx, h.y() + dy);
+  hull.clear();
+  CGAL::convex_hull_2(grown.begin(), grown.end(), std::back_inserter(hull));
+  out->clear();
+  for (const auto& h : hull) out->emplace_back(h.x(), h.y());
+  return true;
+}
+
+// The same section exactly (Epeck): the crossings of every generator pair on opposite sides of the plane.
+Points2 section_exact(const std::vector<Point3>& gens, const FaceChart& chart) {
+  std::vector<FT> s(gens.size());
+  for (std::size_t i = 0; i < gens.size(); ++i) s[i] = value(chart.plane, gens[i]);
+  Points2 pts;
+  for (std::size_t i = 0; i < gens.size(); ++i) {
+    if (s[i] == 0) pts.push_back(chart.project(gens[i]));
+    if (s[i] <= 0) continue;
+    const Point2 p2 = chart.project(gens[i]);
+    for (std::size_t j = 0; j < gens.size(); ++j)
+      if (s[j] < 0) pts.push_back(p2 + (chart.project(gens[j]) - p2) * (s[i] / (s[i] - s[j])));
+  }
+  return pts.empty() ? pts : convex_hull(pts);
+}
 
 FlightCone flight_cone(const Vec3& v_in, double theta_v, double scale) {
   FlightCone cone;
@@ -58,8 +192,11 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
   const CSpace& c = *g.cspace;
   const double margin = kUmbraRelativeMargin * c.scale();
   std::vector<Point3> gens = source.vertices;
+  std::vector<Vec3> src_vec, ring{Vec3::Zero()};
+  for (const Vec3& r : cone.rays) ring.push_back(cone.far * r);
   Box src_box, gen_box;
   for (const Point3& x : source.vertices) {
+    src_vec.push_back(to_vec(x));
     src_box.add(to_vec(x));
     gen_box.add(to_vec(x));
     for (const Vec3& r : cone.rays) {
@@ -84,18 +221,12 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
       all_on = all_on && side == CGAL::ON_ORIENTED_BOUNDARY;
     }
     if (!front && !all_on) continue;  // behind g: reaching g would cross the obstacle behind it
-    std::vector<FT> s(gens.size());
-    for (std::size_t i = 0; i < gens.size(); ++i) s[i] = value(chart.plane, gens[i]);
-    Points2 pts;
-    for (std::size_t i = 0; i < gens.size(); ++i) {
-      if (s[i] == 0) pts.push_back(chart.project(gens[i]));
-      if (s[i] <= 0) continue;
-      const Point2 p2 = chart.project(gens[i]);
-      for (std::size_t j = 0; j < gens.size(); ++j)
-        if (s[j] < 0) pts.push_back(p2 + (chart.project(gens[j]) - p2) * (s[i] / (s[i] - s[j])));
-    }
-    if (pts.empty()) continue;
-    Points2 section = clip(convex_hull(pts), g.face_polygon[gi]);
+    Points2 section;
+    bool thin = false;
+    if (!section_in_doubles(src_vec, ring, chart, &section, &thin)) continue;
+    if (thin) section = section_exact(gens, chart);
+    if (section.empty()) continue;
+    section = clip(section, g.face_polygon[gi]);
     for (const Plane3& keep : source.keep_front) section = clip(section, restrict_to_chart(keep, chart));
     if (section.empty()) continue;
     FlightHit hit;

@@ -32,6 +32,25 @@ struct FlightHit {
   Points2 lower;       // otherwise the section: a segment (2 points) or a point (1)
 };
 
+// Relative error bound of the flight section's double arithmetic: a plane value a x + b y + c z + d computed
+// in doubles is within this x (|a x| + |b y| + |c z| + |d|) of the exact value (90 x the 2^-53 rounding,
+// against at most a dozen roundings: the conversions of exact coordinates and coefficients, the generator
+// sums, the products and sums), and the section's hull is grown by this x (1 + largest coordinate) against
+// rounding of its points. A section whose growth would exceed half a region cell (a scene far from the
+// origin) is computed exactly instead: growth beyond the cell would be propagated by the fixpoint round after
+// round (a creep).
+inline constexpr double kFlightSectionRelativeError = 1e-14;
+// A double section whose width (2 area / diameter) is below this many of its growth pads is recomputed
+// exactly, so that a section that is a segment or a point stays lower-dimensional.
+inline constexpr double kFlightThinSection = 1e3;
+// The section of conv(x_i) ⊕ conv(s_k) (s_0 = 0, s_1.. a ring of cone generators) by the chart's plane, in
+// doubles from the Minkowski sum's edges, grown to a superset of the exact section (flight.cc). False when no
+// edge can cross the plane; *thin when the section is narrower than kFlightThinSection pads or its pad
+// exceeds half the chart's region cell (then *out is unset and the exact section is to be used).
+bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, const FaceChart& chart,
+                        Points2* out, bool* thin);
+// The exact section of conv(gens) by the chart's plane (hull of the crossings of all generator pairs).
+Points2 section_exact(const std::vector<Point3>& gens, const FaceChart& chart);
 // Relative margin (x scene scale) by which each occluder's umbra is shrunk before it is subtracted.
 inline constexpr double kUmbraRelativeMargin = 1e-9;
 

@@ -1,0 +1,116 @@
+// The damper flight's section in doubles (verifier/flight.cc `section_in_doubles`: Minkowski-sum edges,
+// interval signs, grown hull) against the exact section of all generator pairs (`section_exact`): it must
+// contain every exact vertex, exceed the exact section by no more than its rounding pads, and hand thin
+// sections (a source on the plane flying away from it) to the exact path so that they stay segments and
+// points.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "verifier/internal/flight.h"
+#include "verifier/reached_set.h"
+
+namespace cmt {
+namespace {
+
+struct Section {
+  fp::Points2 doubles, exact;
+  bool crosses = false, thin = false;
+};
+
+Section both(const std::vector<Vec3>& source, const fp::FlightCone& cone, const fp::FaceChart& chart) {
+  std::vector<Vec3> ring{Vec3::Zero()};
+  for (const Vec3& r : cone.rays) ring.push_back(cone.far * r);
+  std::vector<fp::Point3> gens;
+  for (const Vec3& x : source) gens.push_back(fp::exact(x));
+  for (const Vec3& x : source)
+    for (const Vec3& r : cone.rays) {
+      const Vec3 d = cone.far * r;
+      gens.push_back(fp::exact(x) + fp::Vector3(d.x(), d.y(), d.z()));
+    }
+  Section s;
+  s.crosses = fp::section_in_doubles(source, ring, chart, &s.doubles, &s.thin);
+  s.exact = fp::section_exact(gens, chart);
+  return s;
+}
+
+double area(const fp::Points2& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const fp::Point2& q = p[i];
+    const fp::Point2& r = p[(i + 1) % p.size()];
+    a += CGAL::to_double(q.x() * r.y() - r.x() * q.y());
+  }
+  return a / 2;
+}
+
+Face face_through(const Vec3& a, const Vec3& b, const Vec3& c) {
+  Face f;
+  f.normal = (b - a).cross(c - a).normalized();
+  f.offset = f.normal.dot(a);
+  f.polygon = {a, b, c};
+  return f;
+}
+
+TEST(FlightSection, DoublesContainTheExactSectionWithinTheirPads) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  auto random_vec = [&](double s) { return Vec3(s * unit(rng), s * unit(rng), s * unit(rng)); };
+  int compared = 0, on_plane_sources = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double scale = trial % 4 == 0 ? 300 : 8;
+    const Vec3 origin = trial % 5 == 0 ? Vec3(1e3, -2e3, 5e2) : Vec3::Zero();
+    // Axis-aligned planes (as in box scenes) and slanted ones.
+    Vec3 a = origin + random_vec(scale), b = a + random_vec(scale), c = a + random_vec(scale);
+    if (trial % 2 == 0) b.z() = c.z() = a.z();
+    fp::FaceChart chart = fp::make_chart(face_through(a, b, c));
+    chart.cell = region_cell(scale);
+    // Sources: random points, some of them the face's corners (exactly on its plane).
+    std::vector<Vec3> source;
+    const int n = 1 + trial % 12;
+    for (int k = 0; k < n; ++k)
+      source.push_back(k < 3 && trial % 3 == 0 ? (k == 0 ? a : k == 1 ? b : c) : a + random_vec(scale / 4));
+    on_plane_sources += trial % 3 == 0;
+    const fp::FlightCone cone = fp::flight_cone(random_vec(1) + Vec3(0, 0, 1e-3),
+                                                0.05 + 0.4 * (unit(rng) + 1), scale + origin.norm());
+    const Section s = both(source, cone, chart);
+    if (!s.exact.empty()) {
+      ASSERT_TRUE(s.crosses) << "trial " << trial << ": the exact section is not empty";
+    }
+    if (!s.crosses || s.thin || s.exact.size() < 3) continue;
+    ++compared;
+    for (const fp::Point2& q : s.exact)
+      ASSERT_TRUE(fp::inside_closed(s.doubles, q)) << "trial " << trial << ": an exact vertex lies outside";
+    // Grown by at most pad = 1e-14 x (1 + largest coordinate) per side: the excess area is at most the
+    // perimeter times that pad plus the pad square, far below 1e-6 of the area for these sizes.
+    const double excess = area(s.doubles) - area(s.exact);
+    EXPECT_GE(excess, 0) << "trial " << trial;
+    EXPECT_LT(excess, 1e-6 * area(s.exact) + 1e-12) << "trial " << trial;
+  }
+  EXPECT_GT(compared, 150);
+  EXPECT_GT(on_plane_sources, 75);
+}
+
+TEST(FlightSection, ASourceOnThePlaneFlyingAwayKeepsALowerDimensionalSection) {
+  // Floor z = 0; the source lies on it; the cone points up (half-angle .3 < pi/2): every generator but the
+  // source's vertices is strictly above, so the section is conv(source) itself.
+  fp::FaceChart chart = fp::make_chart(face_through(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+  chart.cell = region_cell(10);
+  const fp::FlightCone cone = fp::flight_cone(Vec3(0, 0, 1), 0.3, 10);
+  const Section segment = both({Vec3(1, 2, 0), Vec3(3, -1, 0)}, cone, chart);
+  ASSERT_TRUE(segment.crosses);
+  EXPECT_TRUE(segment.thin);
+  ASSERT_EQ(segment.exact.size(), 2u);
+  const Section point = both({Vec3(1, 2, 0)}, cone, chart);
+  ASSERT_TRUE(point.crosses);
+  EXPECT_TRUE(point.thin);
+  ASSERT_EQ(point.exact.size(), 1u);
+  EXPECT_EQ(point.exact[0], fp::Point2(1, 2));
+  // Lifted by 1e-3 the source misses the floor: no edge can cross it.
+  const Section above = both({Vec3(1, 2, 1e-3)}, cone, chart);
+  EXPECT_FALSE(above.crosses);
+  EXPECT_TRUE(above.exact.empty());
+}
+
+}  // namespace
+}  // namespace cmt
