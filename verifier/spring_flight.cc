@@ -50,6 +50,51 @@ std::vector<Vec3> overshoot_points(const std::vector<Vec3>& from, const Vec3& p,
   return out;
 }
 
+using InexactPoint = CGAL::Exact_predicates_inexact_constructions_kernel::Point_2;
+
+// Candidate vertices of the Minkowski sum of two counter-clockwise convex polygons a and b: the merge of
+// their edges by polar angle from their lowest vertices (the sum's vertex sequence), each step also emitting
+// both successors a_i+1 + b_j and a_i + b_j+1. A comparison of nearly parallel edges that rounding decides
+// wrongly then still leaves every vertex of the exact sum among the points, or one within |edge| x 2^-52 of
+// them; the caller's hull of the points is the sum (O(|a| + |b|) points instead of |a| |b|).
+std::vector<InexactPoint> merged_sum_points(const std::vector<InexactPoint>& a,
+                                            const std::vector<InexactPoint>& b) {
+  auto lowest = [](const std::vector<InexactPoint>& p) {
+    std::size_t k = 0;
+    for (std::size_t i = 1; i < p.size(); ++i)
+      if (p[i].y() < p[k].y() || (p[i].y() == p[k].y() && p[i].x() < p[k].x())) k = i;
+    return k;
+  };
+  std::vector<InexactPoint> out;
+  if (a.empty() || b.empty()) return out;
+  const std::size_t na = a.size(), nb = b.size(), a0 = lowest(a), b0 = lowest(b);
+  auto at_a = [&](std::size_t k) { return a[(a0 + k) % na]; };
+  auto at_b = [&](std::size_t k) { return b[(b0 + k) % nb]; };
+  auto sum = [&](std::size_t i, std::size_t j) {
+    out.emplace_back(at_a(i).x() + at_b(j).x(), at_a(i).y() + at_b(j).y());
+  };
+  std::size_t i = 0, j = 0;
+  while (i < na || j < nb) {
+    sum(i, j);
+    sum(i + 1, j);
+    sum(i, j + 1);
+    if (i == na) {
+      ++j;
+      continue;
+    }
+    if (j == nb) {
+      ++i;
+      continue;
+    }
+    const double ax = at_a(i + 1).x() - at_a(i).x(), ay = at_a(i + 1).y() - at_a(i).y();
+    const double bx = at_b(j + 1).x() - at_b(j).x(), by = at_b(j + 1).y() - at_b(j).y();
+    const double cross = ax * by - ay * bx;  // > 0: a's edge turns first
+    if (cross >= 0) ++i;
+    if (cross <= 0) ++j;
+  }
+  return out;
+}
+
 }  // namespace
 
 void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
@@ -79,7 +124,8 @@ std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double 
 // magnitude) and their corners summed with the offsets in doubles: each computed sum is within 2^-53 of its
 // magnitude (far below s) of the exact sum of a box corner, so the hull (exact predicates on doubles, Epick)
 // of the computed sums contains every exact point plus every offset. The offsets are exact doubles
-// (disk_offsets).
+// (disk_offsets). Only the sums that can be vertices are formed (merged_sum_points: the corners' hull and the
+// offsets' hull merged by edge angle).
 Points2 minkowski_outward(const Points2& points, const std::vector<Vector2>& offsets) {
   using Inexact = CGAL::Exact_predicates_inexact_constructions_kernel;
   double big = 0;
@@ -95,13 +141,15 @@ Points2 minkowski_outward(const Points2& points, const std::vector<Vector2>& off
     big = std::max({big, std::abs(d.back()[0]), std::abs(d.back()[1])});
   }
   const double s = kSpringRoundingSlack * (1 + 2 * big);
-  std::vector<Inexact::Point_2> corners, hull, sums;
+  std::vector<Inexact::Point_2> corners, hull, ring;
   for (const auto& b : boxes)
     for (const double x : {b[0] - s, b[1] + s})
       for (const double y : {b[2] - s, b[3] + s}) corners.emplace_back(x, y);
   CGAL::convex_hull_2(corners.begin(), corners.end(), std::back_inserter(hull));
-  for (const Inexact::Point_2& h : hull)
-    for (const auto& v : d) sums.emplace_back(h.x() + v[0], h.y() + v[1]);
+  corners.clear();
+  for (const auto& v : d) corners.emplace_back(v[0], v[1]);
+  CGAL::convex_hull_2(corners.begin(), corners.end(), std::back_inserter(ring));
+  std::vector<Inexact::Point_2> sums = merged_sum_points(hull, ring);
   hull.clear();
   CGAL::convex_hull_2(sums.begin(), sums.end(), std::back_inserter(hull));
   Points2 out;
