@@ -131,25 +131,31 @@ double eps_o(const Uncertainty& u) {
   return u.eps_p + (u.step + 2 * u.eps_p) * (1 + std::exp(-t_o) * std::sin(u.theta_v));
 }
 
+Polyhedron spring_weak_region(const CSpace& cspace, int atom_id, const Uncertainty& u) {
+  const FrictionCone cone = atom_friction_cone(cspace, atom_id);
+  const FrictionCone wide = cone.widened(u.theta_v);
+  if (cspace.atom_kind(atom_id) == AtomKind::kFace &&
+      cone.generators()[0].half_angle + u.theta_v >= kHalfPi) {
+    const double psi = cone.generators()[0].half_angle + u.theta_v;
+    return psi >= std::numbers::pi ? Polyhedron::everything()
+                                   : face_weak_concave(cspace.faces()[atom_id], psi, u.eps_s);
+  }
+  if (wide.is_full(/*outer=*/true)) return Polyhedron::everything();  // sound: a non-convex summed cone
+  return hull_plus_cone(atom_points(cspace, atom_id), negated(wide.extreme_rays(/*outer=*/true)))
+      .offset(u.eps_s);
+}
+
 SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id, const Uncertainty& u) {
   SpringStickingRegions out;
+  out.weak = spring_weak_region(cspace, atom_id, u);
+  out.strong = spring_strong_regions(cspace, atom_id, u);
+  return out;
+}
+
+std::vector<Polyhedron> spring_strong_regions(const CSpace& cspace, int atom_id, const Uncertainty& u) {
+  std::vector<Polyhedron> out;
   const FrictionCone cone = atom_friction_cone(cspace, atom_id);
-  const std::vector<Vec3> points = atom_points(cspace, atom_id);
   const AtomKind kind = cspace.atom_kind(atom_id);
-
-  // Weak region.
-  const FrictionCone wide = cone.widened(u.theta_v);
-  if (kind == AtomKind::kFace && cone.generators()[0].half_angle + u.theta_v >= kHalfPi) {
-    const double psi = cone.generators()[0].half_angle + u.theta_v;
-    out.weak = psi >= std::numbers::pi ? Polyhedron::everything()
-                                       : face_weak_concave(cspace.faces()[atom_id], psi, u.eps_s);
-  } else if (wide.is_full(/*outer=*/true)) {
-    out.weak = Polyhedron::everything();  // sound: a non-convex summed cone is not represented
-  } else {
-    out.weak = hull_plus_cone(points, negated(wide.extreme_rays(/*outer=*/true))).offset(u.eps_s);
-  }
-
-  // Strong region.
   const double margin = eps_t(u);
   if (kind == AtomKind::kFace) {
     const Face& f = cspace.faces()[atom_id];
@@ -165,10 +171,10 @@ SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id,
         const Vec3 outward = edge.cross(f.normal).normalized();  // CCW about n: edge x n points out of F
         strong.halfspaces.push_back({outward, outward.dot(f.polygon[i]) - margin});
       }
-      out.strong.push_back(std::move(strong));
+      out.push_back(std::move(strong));
     }
   } else {
-    out.strong = edge_vertex_strong(cspace, atom_id, points, u);
+    out = edge_vertex_strong(cspace, atom_id, atom_points(cspace, atom_id), u);
   }
   return out;
 }

@@ -36,6 +36,9 @@ struct SpringStickingRegions {
 // narrowed by theta_v, eroded by eps_s, from inner cones). Buckley's summed cone is not used for "must": at a
 // convex corner, sliding off onto a face is also a solution inside it.
 SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id, const Uncertainty& u);
+// Its two parts on their own (the weak one builds the widened cone's polyhedral hull: the costly part).
+Polyhedron spring_weak_region(const CSpace& cspace, int atom_id, const Uncertainty& u);
+std::vector<Polyhedron> spring_strong_regions(const CSpace& cspace, int atom_id, const Uncertainty& u);
 
 enum class StickClass { kMust, kMay, kNever };
 const char* stick_class_name(StickClass c);

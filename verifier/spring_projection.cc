@@ -101,9 +101,9 @@ class SpringProjector {
       strong_.push_back(std::move(strong));
     }
     for (int id = nf_; id < c_.atom_count(); ++id) {
-      const SpringStickingRegions reg = spring_sticking_regions(c_, id, u_);
-      const bool weak = slow_radius_ > 0 ? spring_sticking_regions(c_, id, u_weak).weak.contains(p_)
-                                         : reg.weak.contains(p_);
+      SpringStickingRegions reg;
+      reg.strong = spring_strong_regions(c_, id, u_);
+      const bool weak = spring_weak_region(c_, id, slow_radius_ > 0 ? u_weak : u_).contains(p_);
       // The velocity model also tests the force cone against the atom's cone directly (both are sound, so
       // both must allow sticking).
       weak_atom_.push_back(weak && (model_ != SpringModel::kVelocity || velocity_may_stick(id)));
