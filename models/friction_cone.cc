@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numbers>
 
@@ -255,14 +256,39 @@ FrictionCone FrictionCone::face(const Vec3& normal, double mu) {
   return sum({CircularCone{normal.normalized(), std::atan(mu)}});
 }
 
+// A polyhedral approximation is a pure function of its generators. Scenes repeat them (every edge of an
+// axis-aligned box scene has one of a few cones; the spring projector asks again for cones the damper
+// classification built), so each distinct generator list is built once per process and shared while any cone
+// holds it. Keyed on the exact doubles, in order: a shared approximation is the one the cone would have built.
 struct FrictionCone::Lazy {
   std::vector<Vec3> gens;
   Vec3 circular_axis = Vec3::Zero();
   std::once_flag once;
-  std::unique_ptr<Polyhedral> built;
+  std::shared_ptr<const Polyhedral> built;
   const Polyhedral& get() {
-    std::call_once(once, [this] { built = std::make_unique<Polyhedral>(gens, circular_axis); });
+    std::call_once(once, [this] { built = shared(gens, circular_axis); });
     return *built;
+  }
+
+  static std::shared_ptr<const Polyhedral> shared(const std::vector<Vec3>& gens, const Vec3& circular_axis) {
+    static std::mutex mutex;
+    static std::map<std::vector<double>, std::weak_ptr<const Polyhedral>> cache;
+    static std::size_t inserts = 0;
+    std::vector<double> key{circular_axis.x(), circular_axis.y(), circular_axis.z()};
+    for (const Vec3& g : gens) key.insert(key.end(), {g.x(), g.y(), g.z()});
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      const auto it = cache.find(key);
+      if (it != cache.end())
+        if (auto found = it->second.lock()) return found;
+    }
+    auto made = std::make_shared<const Polyhedral>(gens, circular_axis);  // built outside the lock
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = cache[key];
+    if (auto found = slot.lock()) return found;  // another thread built the same one meanwhile
+    slot = made;
+    if (++inserts % 4096 == 0) std::erase_if(cache, [](const auto& entry) { return entry.second.expired(); });
+    return made;
   }
 };
 

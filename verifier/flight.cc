@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace cmt::fp {
 namespace {
@@ -99,7 +100,7 @@ bool crossing_interval(double lo_p, double hi_p, double lo_q, double hi_q, doubl
 // edge can cross; sets *thin when the hull is degenerate or narrower than kFlightThinSection of that size, or
 // when that growth exceeds half a region cell: the caller then takes the exact section.
 bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, const FaceChart& chart,
-                        Points2* out, bool* thin) {
+                        Points2* out, bool* thin, std::vector<GeneratorEdge>* crossing) {
   const PlaneDouble plane(chart.plane);
   const std::size_t nx = x.size(), ns = s.size();
   std::vector<Vec3> gen(nx * ns);
@@ -115,10 +116,15 @@ bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, 
       big = std::max(big, gen[at].cwiseAbs().maxCoeff());
     }
   std::vector<Inexact::Point_2> pts;
+  auto certain_sign = [&](std::size_t g) { return lo[g] > 0 ? 1 : (hi[g] < 0 ? -1 : 0); };
+  auto can_cross = [&](std::size_t p, std::size_t q, double* t0, double* t1) {
+    if ((lo[p] > 0 && lo[q] > 0) || (hi[p] < 0 && hi[q] < 0)) return false;
+    return crossing_interval(lo[p], hi[p], lo[q], hi[q], t0, t1);
+  };
   auto edge = [&](std::size_t p, std::size_t q) {
-    if ((lo[p] > 0 && lo[q] > 0) || (hi[p] < 0 && hi[q] < 0)) return;
     double t0, t1;
-    if (!crossing_interval(lo[p], hi[p], lo[q], hi[q], &t0, &t1)) return;
+    if (!can_cross(p, q, &t0, &t1)) return;
+    if (crossing) crossing->push_back({p, q, certain_sign(p), certain_sign(q)});
     for (const double t : {t0, t1}) {
       const Vec3 y = gen[p] + t * (gen[q] - gen[p]);
       pts.emplace_back(y[chart.u], y[chart.v]);
@@ -133,22 +139,39 @@ bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, 
       edge(i * ns + k, i * ns + (k + 1 < ns ? k + 1 : 1));
     }
   if (pts.empty()) return false;
+  // The ring's corners are rounded, so in exact arithmetic they are not quite coplanar and their hull has
+  // edges between non-adjacent corners too. The slab of the error bounds covers them in doubles (each corner
+  // lies within 2^-52 of its size of the planar ring, far inside the bounds); the exact section also needs
+  // them as edges.
+  auto add_ring_chords = [&] {
+    if (!crossing) return;
+    double t0, t1;
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t k = 1; k < ns; ++k)
+        for (std::size_t l = k + 2; l < ns; ++l)
+          if ((k != 1 || l + 1 != ns) && can_cross(i * ns + k, i * ns + l, &t0, &t1))
+            crossing->push_back({i * ns + k, i * ns + l, certain_sign(i * ns + k), certain_sign(i * ns + l)});
+  };
   const double pad = kFlightSectionRelativeError * (1 + big);
   if (pad > 0.5 * chart.cell) {
     *thin = true;
+    add_ring_chords();
     return true;
   }
   std::vector<Inexact::Point_2> hull, grown;
   CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
-  double area2 = 0, diameter = 0;
+  double area2 = 0, diameter2 = 0;
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const auto& p = hull[i];
     const auto& q = hull[(i + 1) % hull.size()];
     area2 += p.x() * q.y() - q.x() * p.y();
-    for (const auto& r : hull) diameter = std::max(diameter, std::hypot(r.x() - p.x(), r.y() - p.y()));
+    for (const auto& r : hull) diameter2 = std::max(diameter2, CGAL::squared_distance(p, r));
   }
-  *thin = hull.size() < 3 || area2 <= kFlightThinSection * pad * diameter;
-  if (*thin) return true;
+  *thin = hull.size() < 3 || area2 <= kFlightThinSection * pad * std::sqrt(diameter2);
+  if (*thin) {
+    add_ring_chords();
+    return true;
+  }
   for (const auto& h : hull)
     for (const double dx : {-pad, pad})
       for (const double dy : {-pad, pad}) grown.emplace_back(h.x() + dx, h.y() + dy);
@@ -157,6 +180,39 @@ bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, 
   out->clear();
   for (const auto& h : hull) out->emplace_back(h.x(), h.y());
   return true;
+}
+
+Points2 section_exact(const std::vector<Point3>& x, const std::vector<Vec3>& s,
+                      const std::vector<GeneratorEdge>& edges, const FaceChart& chart) {
+  const std::size_t ns = s.size();
+  std::vector<std::optional<Point3>> gen(x.size() * ns);
+  std::vector<std::optional<FT>> v(gen.size());
+  auto point = [&](std::size_t g) -> const Point3& {
+    if (!gen[g]) {
+      const Vec3& d = s[g % ns];
+      gen[g] = g % ns == 0 ? x[g / ns] : x[g / ns] + Vector3(d.x(), d.y(), d.z());
+    }
+    return *gen[g];
+  };
+  auto val = [&](std::size_t g) -> const FT& {
+    if (!v[g]) v[g] = value(chart.plane, point(g));
+    return *v[g];
+  };
+  // Exact values only where the error bounds leave the sign open, or for a crossing's position.
+  auto sign = [&](std::size_t g, int certain) {
+    return certain != 0 ? certain : static_cast<int>(CGAL::sign(val(g)));
+  };
+  Points2 pts;
+  for (const GeneratorEdge& e : edges) {
+    const int sp = sign(e.p, e.sign_p), sq = sign(e.q, e.sign_q);
+    if (sp == 0) pts.push_back(chart.project(point(e.p)));
+    if (sq == 0) pts.push_back(chart.project(point(e.q)));
+    if (sp * sq < 0) {
+      const Point2 a = chart.project(point(e.p));
+      pts.push_back(a + (chart.project(point(e.q)) - a) * (val(e.p) / (val(e.p) - val(e.q))));
+    }
+  }
+  return pts.empty() ? pts : convex_hull(pts);
 }
 
 // The same section exactly (Epeck): the crossings of every generator pair on opposite sides of the plane.
@@ -191,7 +247,6 @@ FlightCone flight_cone(const Vec3& v_in, double theta_v, double scale) {
 std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source, const FlightCone& cone) {
   const CSpace& c = *g.cspace;
   const double margin = kUmbraRelativeMargin * c.scale();
-  std::vector<Point3> gens = source.vertices;
   std::vector<Vec3> src_vec, ring{Vec3::Zero()};
   for (const Vec3& r : cone.rays) ring.push_back(cone.far * r);
   Box src_box, gen_box;
@@ -201,7 +256,6 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
     gen_box.add(to_vec(x));
     for (const Vec3& r : cone.rays) {
       const Vec3 d = cone.far * r;
-      gens.push_back(x + Vector3(d.x(), d.y(), d.z()));
       gen_box.add(to_vec(x) + d);
     }
   }
@@ -223,8 +277,9 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
     if (!front && !all_on) continue;  // behind g: reaching g would cross the obstacle behind it
     Points2 section;
     bool thin = false;
-    if (!section_in_doubles(src_vec, ring, chart, &section, &thin)) continue;
-    if (thin) section = section_exact(gens, chart);
+    std::vector<GeneratorEdge> crossing;
+    if (!section_in_doubles(src_vec, ring, chart, &section, &thin, &crossing)) continue;
+    if (thin) section = section_exact(source.vertices, ring, crossing, chart);
     if (section.empty()) continue;
     section = clip(section, g.face_polygon[gi]);
     for (const Plane3& keep : source.keep_front) section = clip(section, restrict_to_chart(keep, chart));

@@ -5,6 +5,7 @@
 // points.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "verifier/internal/flight.h"
@@ -14,7 +15,7 @@ namespace cmt {
 namespace {
 
 struct Section {
-  fp::Points2 doubles, exact;
+  fp::Points2 doubles, exact, exact_on_edges;
   bool crosses = false, thin = false;
 };
 
@@ -29,9 +30,18 @@ Section both(const std::vector<Vec3>& source, const fp::FlightCone& cone, const 
       gens.push_back(fp::exact(x) + fp::Vector3(d.x(), d.y(), d.z()));
     }
   Section s;
-  s.crosses = fp::section_in_doubles(source, ring, chart, &s.doubles, &s.thin);
+  std::vector<fp::GeneratorEdge> crossing;
+  s.crosses = fp::section_in_doubles(source, ring, chart, &s.doubles, &s.thin, &crossing);
   s.exact = fp::section_exact(gens, chart);
+  std::vector<fp::Point3> exact_source;
+  for (const Vec3& x : source) exact_source.push_back(fp::exact(x));
+  s.exact_on_edges = fp::section_exact(exact_source, ring, crossing, chart);
   return s;
+}
+
+std::vector<fp::Point2> sorted(fp::Points2 p) {
+  std::sort(p.begin(), p.end());
+  return p;
 }
 
 double area(const fp::Points2& p) {
@@ -56,7 +66,7 @@ TEST(FlightSection, DoublesContainTheExactSectionWithinTheirPads) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(-1, 1);
   auto random_vec = [&](double s) { return Vec3(s * unit(rng), s * unit(rng), s * unit(rng)); };
-  int compared = 0, on_plane_sources = 0;
+  int compared = 0, on_plane_sources = 0, thin = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const double scale = trial % 4 == 0 ? 300 : 8;
     const Vec3 origin = trial % 5 == 0 ? Vec3(1e3, -2e3, 5e2) : Vec3::Zero();
@@ -77,6 +87,11 @@ TEST(FlightSection, DoublesContainTheExactSectionWithinTheirPads) {
     if (!s.exact.empty()) {
       ASSERT_TRUE(s.crosses) << "trial " << trial << ": the exact section is not empty";
     }
+    // A thin section is computed exactly from the edges that can cross: the same vertices as from all pairs.
+    if (s.thin) {
+      ++thin;
+      ASSERT_EQ(sorted(s.exact_on_edges), sorted(s.exact)) << "trial " << trial;
+    }
     if (!s.crosses || s.thin || s.exact.size() < 3) continue;
     ++compared;
     for (const fp::Point2& q : s.exact)
@@ -89,6 +104,22 @@ TEST(FlightSection, DoublesContainTheExactSectionWithinTheirPads) {
   }
   EXPECT_GT(compared, 150);
   EXPECT_GT(on_plane_sources, 75);
+  // Thin sections: one or two source points on a floor z = h, cones pointing up at random.
+  for (int trial = 0; trial < 200; ++trial) {
+    const double h = 0.1 * (trial % 7), scale = 8;
+    fp::FaceChart chart = fp::make_chart(face_through(Vec3(0, 0, h), Vec3(1, 0, h), Vec3(0, 1, h)));
+    chart.cell = region_cell(scale);
+    std::vector<Vec3> source{Vec3(2 * unit(rng), 2 * unit(rng), h)};
+    if (trial % 2) source.push_back(Vec3(2 * unit(rng), 2 * unit(rng), h));
+    const Vec3 v = random_vec(1) + Vec3(0, 0, 1.8);
+    const Section s = both(source, fp::flight_cone(v, 0.5 * (unit(rng) + 1), scale), chart);
+    ASSERT_TRUE(s.crosses) << "thin trial " << trial;
+    if (!s.thin) continue;
+    ++thin;
+    ASSERT_EQ(sorted(s.exact_on_edges), sorted(s.exact)) << "thin trial " << trial;
+    ASSERT_EQ(s.exact.size(), source.size()) << "thin trial " << trial;
+  }
+  EXPECT_GT(thin, 100);
 }
 
 TEST(FlightSection, ASourceOnThePlaneFlyingAwayKeepsALowerDimensionalSection) {
@@ -101,11 +132,13 @@ TEST(FlightSection, ASourceOnThePlaneFlyingAwayKeepsALowerDimensionalSection) {
   ASSERT_TRUE(segment.crosses);
   EXPECT_TRUE(segment.thin);
   ASSERT_EQ(segment.exact.size(), 2u);
+  EXPECT_EQ(sorted(segment.exact_on_edges), sorted(segment.exact));
   const Section point = both({Vec3(1, 2, 0)}, cone, chart);
   ASSERT_TRUE(point.crosses);
   EXPECT_TRUE(point.thin);
   ASSERT_EQ(point.exact.size(), 1u);
   EXPECT_EQ(point.exact[0], fp::Point2(1, 2));
+  EXPECT_EQ(point.exact_on_edges, point.exact);
   // Lifted by 1e-3 the source misses the floor: no edge can cross it.
   const Section above = both({Vec3(1, 2, 1e-3)}, cone, chart);
   EXPECT_FALSE(above.crosses);

@@ -47,8 +47,19 @@ inline constexpr double kFlightThinSection = 1e3;
 // doubles from the Minkowski sum's edges, grown to a superset of the exact section (flight.cc). False when no
 // edge can cross the plane; *thin when the section is narrower than kFlightThinSection pads or its pad
 // exceeds half the chart's region cell (then *out is unset and the exact section is to be used).
+// Generators are numbered i |s| + k for x_i + s_k; *crossing (when given) receives every edge whose plane
+// values can have opposite signs or vanish (all the edges that can meet the plane), with each end's sign
+// where its error bound already decides it (+1 or -1; 0: undecided).
+struct GeneratorEdge {
+  std::size_t p, q;
+  int sign_p, sign_q;
+};
 bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, const FaceChart& chart,
-                        Points2* out, bool* thin);
+                        Points2* out, bool* thin, std::vector<GeneratorEdge>* crossing = nullptr);
+// The exact section from those edges only (x exact, s_k as in section_in_doubles, s_0 = 0): the hull of their
+// exact crossings and of their ends on the plane.
+Points2 section_exact(const std::vector<Point3>& x, const std::vector<Vec3>& s,
+                      const std::vector<GeneratorEdge>& crossing, const FaceChart& chart);
 // The exact section of conv(gens) by the chart's plane (hull of the crossings of all generator pairs).
 Points2 section_exact(const std::vector<Point3>& gens, const FaceChart& chart);
 // Relative margin (x scene scale) by which each occluder's umbra is shrunk before it is subtracted.
