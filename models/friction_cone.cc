@@ -259,7 +259,8 @@ FrictionCone FrictionCone::face(const Vec3& normal, double mu) {
 // A polyhedral approximation is a pure function of its generators. Scenes repeat them (every edge of an
 // axis-aligned box scene has one of a few cones; the spring projector asks again for cones the damper
 // classification built), so each distinct generator list is built once per process and shared while any cone
-// holds it. Keyed on the exact doubles, in order: a shared approximation is the one the cone would have built.
+// holds it. Keyed on the exact doubles, in order: a shared approximation is the one the cone would have
+// built.
 struct FrictionCone::Lazy {
   std::vector<Vec3> gens;
   Vec3 circular_axis = Vec3::Zero();
