@@ -8,8 +8,8 @@
 // the hull of the crossings of its edges, and every edge of a Minkowski sum is a vertex of one summand plus
 // an edge of the other: (x_i, x_j) + s_k for every source pair and S vertex, x_i + (0, far r_k) and x_i +
 // (far r_k, far r_k+1). Those crossings are computed in doubles with interval bounds on the signs
-// (section_in_doubles); a section thinner than a few thousand roundings is recomputed exactly (Epeck) from
-// every generator pair, so a segment or point stays one.
+// (section_in_doubles); a section thinner than a thousand of its rounding pads is recomputed exactly (Epeck)
+// from the edges that can cross, so a segment or point stays one (section_exact).
 #include "verifier/internal/flight.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -215,21 +215,6 @@ Points2 section_exact(const std::vector<Point3>& x, const std::vector<Vec3>& s,
   return pts.empty() ? pts : convex_hull(pts);
 }
 
-// The same section exactly (Epeck): the crossings of every generator pair on opposite sides of the plane.
-Points2 section_exact(const std::vector<Point3>& gens, const FaceChart& chart) {
-  std::vector<FT> s(gens.size());
-  for (std::size_t i = 0; i < gens.size(); ++i) s[i] = value(chart.plane, gens[i]);
-  Points2 pts;
-  for (std::size_t i = 0; i < gens.size(); ++i) {
-    if (s[i] == 0) pts.push_back(chart.project(gens[i]));
-    if (s[i] <= 0) continue;
-    const Point2 p2 = chart.project(gens[i]);
-    for (std::size_t j = 0; j < gens.size(); ++j)
-      if (s[j] < 0) pts.push_back(p2 + (chart.project(gens[j]) - p2) * (s[i] / (s[i] - s[j])));
-  }
-  return pts.empty() ? pts : convex_hull(pts);
-}
-
 FlightCone flight_cone(const Vec3& v_in, double theta_v, double scale) {
   FlightCone cone;
   const Vec3 v = v_in.normalized();
@@ -254,10 +239,7 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
     src_vec.push_back(to_vec(x));
     src_box.add(to_vec(x));
     gen_box.add(to_vec(x));
-    for (const Vec3& r : cone.rays) {
-      const Vec3 d = cone.far * r;
-      gen_box.add(to_vec(x) + d);
-    }
+    for (const Vec3& d : ring) gen_box.add(to_vec(x) + d);
   }
   const double pad = 1e-9 * c.scale();
   std::vector<Box> face_box(c.faces().size());

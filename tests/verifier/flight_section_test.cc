@@ -1,6 +1,6 @@
 // The damper flight's section in doubles (verifier/flight.cc `section_in_doubles`: Minkowski-sum edges,
-// interval signs, grown hull) against the exact section of all generator pairs (`section_exact`): it must
-// contain every exact vertex, exceed the exact section by no more than its rounding pads, and hand thin
+// interval signs, grown hull) against the exact section of all generator pairs (`section_of_all_pairs`): it
+// must contain every exact vertex, exceed the exact section by no more than its rounding pads, and hand thin
 // sections (a source on the plane flying away from it) to the exact path so that they stay segments and
 // points.
 #include <gtest/gtest.h>
@@ -13,6 +13,23 @@
 
 namespace cmt {
 namespace {
+
+// The exact section of conv(gens) by the chart's plane from every generator pair on opposite sides (the
+// reference: it needs no knowledge of which pairs are edges).
+fp::Points2 section_of_all_pairs(const std::vector<fp::Point3>& gens, const fp::FaceChart& chart) {
+  const fp::Plane3& h = chart.plane;
+  std::vector<fp::FT> s;
+  for (const fp::Point3& g : gens) s.push_back(h.a() * g.x() + h.b() * g.y() + h.c() * g.z() + h.d());
+  fp::Points2 pts;
+  for (std::size_t i = 0; i < gens.size(); ++i) {
+    if (s[i] == 0) pts.push_back(chart.project(gens[i]));
+    if (s[i] <= 0) continue;
+    const fp::Point2 p2 = chart.project(gens[i]);
+    for (std::size_t j = 0; j < gens.size(); ++j)
+      if (s[j] < 0) pts.push_back(p2 + (chart.project(gens[j]) - p2) * (s[i] / (s[i] - s[j])));
+  }
+  return pts.empty() ? pts : fp::convex_hull(pts);
+}
 
 struct Section {
   fp::Points2 doubles, exact, exact_on_edges;
@@ -32,7 +49,7 @@ Section both(const std::vector<Vec3>& source, const fp::FlightCone& cone, const 
   Section s;
   std::vector<fp::GeneratorEdge> crossing;
   s.crosses = fp::section_in_doubles(source, ring, chart, &s.doubles, &s.thin, &crossing);
-  s.exact = fp::section_exact(gens, chart);
+  s.exact = section_of_all_pairs(gens, chart);
   std::vector<fp::Point3> exact_source;
   for (const Vec3& x : source) exact_source.push_back(fp::exact(x));
   s.exact_on_edges = fp::section_exact(exact_source, ring, crossing, chart);

@@ -60,8 +60,6 @@ bool section_in_doubles(const std::vector<Vec3>& x, const std::vector<Vec3>& s, 
 // exact crossings and of their ends on the plane.
 Points2 section_exact(const std::vector<Point3>& x, const std::vector<Vec3>& s,
                       const std::vector<GeneratorEdge>& crossing, const FaceChart& chart);
-// The exact section of conv(gens) by the chart's plane (hull of the crossings of all generator pairs).
-Points2 section_exact(const std::vector<Point3>& gens, const FaceChart& chart);
 // Relative margin (x scene scale) by which each occluder's umbra is shrunk before it is subtracted.
 inline constexpr double kUmbraRelativeMargin = 1e-9;
 
