@@ -66,12 +66,12 @@ class StrategyVerifier {
     out_.servo_coast = options.servo_coast;
   }
 
-  VerifyResult run() {
+  VerifyResult run(const ReachedSet& start) {
     if (strategy_.nodes.empty()) {
       out_.failure = "empty strategy";
       return std::move(out_);
     }
-    simulate_node(0, ReachedSet::from_region(lt_, lt_.task.start), -1, -1);
+    simulate_node(0, start, -1, -1);
     out_.reliable = out_.failed_step < 0;
     return std::move(out_);
   }
@@ -182,7 +182,12 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
 }
 
 VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options) {
-  return StrategyVerifier(lt, strategy, options).run();
+  return StrategyVerifier(lt, strategy, options).run(ReachedSet::from_region(lt, lt.task.start));
+}
+
+VerifyResult verify_strategy_from(const LoadedTask& lt, const Strategy& strategy, const ReachedSet& start,
+                                  const VerifyOptions& options) {
+  return StrategyVerifier(lt, strategy, options).run(start);
 }
 
 }  // namespace cmt

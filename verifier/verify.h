@@ -123,5 +123,9 @@ VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::strin
                             const VerifyOptions& options = {});
 VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy,
                              const VerifyOptions& options = {});
+// The same from another start set (a part of the task's start, or any contact set): the teaching system's
+// pre-image test (verifier/teaching).
+VerifyResult verify_strategy_from(const LoadedTask& task, const Strategy& strategy, const ReachedSet& start,
+                                  const VerifyOptions& options = {});
 
 }  // namespace cmt

@@ -27,5 +27,6 @@ void add_merge_command(CLI::App& app, CommandState& state);
 void add_export_csv_command(CLI::App& app, CommandState& state);
 void add_soundness_campaign_command(CLI::App& app, CommandState& state);
 void add_falsify_command(CLI::App& app, CommandState& state);
+void add_teach_command(CLI::App& app, CommandState& state);
 
 }  // namespace cmt

@@ -1,6 +1,6 @@
-// `cmt report RESULTS.sqlite -o DIR [--json]`: the HTML and Markdown report of a sweep's results database
-// with its figures (experiments/report/report.h). Exit status 2 when the database is missing, is not a cmt
-// results database or holds bad content.
+// `cmt report RESULTS.sqlite -o DIR [--teach FILE...] [--json]`: the HTML and Markdown report of a sweep's
+// results database with its figures (experiments/report/report.h). Exit status 2 when the database is
+// missing, is not a cmt results database or holds bad content.
 #include <iostream>
 
 #include "experiments/cli/cli_output.h"
@@ -14,6 +14,7 @@ namespace cmt {
 void add_report_command(CLI::App& app, CommandState& state) {
   struct Options {
     std::string database, out_dir;
+    std::vector<std::string> teach;
   };
   auto options = std::make_shared<Options>();
   auto* cmd =
@@ -21,9 +22,12 @@ void add_report_command(CLI::App& app, CommandState& state) {
   cmd->add_option("DATABASE", options->database, "results database written by cmt sweep")->required();
   cmd->add_option("-o,--output", options->out_dir, "report directory (created if missing)")->required();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->add_option("--teach", options->teach,
+                  "`cmt teach --json` result files to show in a Teaching sessions section");
   cmd->callback([options, &state] {
-    const report::ReportSummary r = report::write_report(options->database, options->out_dir,
-                                                         verifier_stick_classes(), replay_counterexample);
+    const report::ReportSummary r = report::write_report(
+        options->database, options->out_dir, verifier_stick_classes(), replay_counterexample,
+        std::vector<std::filesystem::path>(options->teach.begin(), options->teach.end()));
     if (state.json)
       print_json({{"index", r.index.string()},
                   {"markdown", r.markdown.string()},

@@ -8,6 +8,14 @@
 #include "experiments/report/report_table.h"
 
 namespace cmt::report {
+
+const nlohmann::json& json_member(const nlohmann::json& j, const char* key) {
+  static const nlohmann::json null;
+  if (!j.is_object()) return null;
+  const auto it = j.find(key);
+  return it == j.end() ? null : *it;
+}
+
 namespace {
 
 using nlohmann::json;
@@ -16,13 +24,7 @@ constexpr int kFractionDecimals = 4;  // coverage, as in the main table
 
 Cell text(const std::string& s) { return {{s, "", false, ""}}; }
 
-// Missing, null or mistyped members read as the fallback: the section shows what the object has.
-const json& member(const json& j, const char* key) {
-  static const json null;
-  if (!j.is_object()) return null;
-  const auto it = j.find(key);
-  return it == j.end() ? null : *it;
-}
+const json& member(const json& j, const char* key) { return json_member(j, key); }
 
 double number(const json& j, const char* key) {
   const json& v = member(j, key);

@@ -1,5 +1,6 @@
 #include "experiments/report/report.h"
 
+#include <fstream>
 #include <map>
 #include <memory>
 #include <set>
@@ -188,8 +189,27 @@ class ReportBuilder {
 
 }  // namespace
 
+namespace {
+
+std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::path>& files) {
+  std::vector<TeachingRun> runs;
+  for (const std::filesystem::path& f : files) {
+    std::ifstream in(f);
+    if (!in) throw TaskError(f.string(), "", "cannot open the teaching result");
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("solved") || !j.contains("steps"))
+      throw TaskError(f.string(), "", "not a `cmt teach --json` result (an object with solved and steps)");
+    runs.push_back({f.filename().string(), std::move(j)});
+  }
+  return runs;
+}
+
+}  // namespace
+
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
-                           const StickClassOf& stick_class, const CounterexampleReplay& replay) {
+                           const StickClassOf& stick_class, const CounterexampleReplay& replay,
+                           const std::vector<std::filesystem::path>& teach_results) {
+  const std::vector<TeachingRun> teaching = read_teaching_runs(teach_results);
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
   ReportBuilder builder(db, out_dir, stick_class, replay);
@@ -199,7 +219,8 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
     sections.push_back(builder.section(c));
     ++(c.done() ? summary.done : summary.pending);
   }
-  const ReportContent content = build_report_content(db, std::move(sections));
+  ReportContent content = build_report_content(db, std::move(sections));
+  content.teaching = teaching_table(teaching);
   summary.configs = static_cast<int>(db.configs.size());
   summary.figures = static_cast<int>(builder.figures().size());
   summary.index = out_dir / "index.html";

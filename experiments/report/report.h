@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "experiments/report/view_data.h"
 
@@ -20,7 +21,10 @@ struct ReportSummary {
 // output cannot be written.
 // `stick_class`: shades the 3-D pages' predicted pieces by their atom's stick class (empty: no shading).
 // `replay`: draws each configuration's counterexample trajectory on its 3-D page (empty: none drawn).
+// `teach_results`: `cmt teach --json` output files shown in a "Teaching sessions" section (a file that is not
+// such JSON is a TaskError naming it).
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
-                           const StickClassOf& stick_class = {}, const CounterexampleReplay& replay = {});
+                           const StickClassOf& stick_class = {}, const CounterexampleReplay& replay = {},
+                           const std::vector<std::filesystem::path>& teach_results = {});
 
 }  // namespace cmt::report

@@ -128,6 +128,20 @@ void md_falsify(std::ostream& md, const Table& t) {
   md_table(md, t);
 }
 
+constexpr const char* kTeachingTitle = "Teaching sessions";
+constexpr const char* kTeachingIntro =
+    "Per scripted teaching session (cmt teach, Buckley ch. 5; docs/teaching.md): whether the start was "
+    "solved, "
+    "the taught strategy, per step the chain tried and the measure of the start it solved and left (with the "
+    "verifier's reason), and the pre-image check: MuJoCo rollouts from every solved start cell, each of "
+    "which must reach the goal.";
+
+void md_teaching(std::ostream& md, const Table& t) {
+  if (t.rows.empty()) return;
+  md << "## " << kTeachingTitle << "\n\n" << kTeachingIntro << "\n\n";
+  md_table(md, t);
+}
+
 void md_section(std::ostream& md, const ConfigSection& s) {
   md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
   if (!s.view_page.empty()) md << "[3-D view](" << s.view_page << ")\n\n";
@@ -221,6 +235,13 @@ void html_falsify(std::ostream& h, const Table& t) {
   html_rows(h, t);
 }
 
+void html_teaching(std::ostream& h, const Table& t) {
+  if (t.rows.empty()) return;
+  h << "<h2 id=\"teaching\">" << kTeachingTitle << "</h2>\n<p>" << html_escape(kTeachingIntro)
+    << "</p>\n<table class=\"teaching\">\n";
+  html_rows(h, t);
+}
+
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
   const ConfigSection& s = c.sections[i];
   h << "<section class=\"config\" id=\"" << section_anchor(*s.row) << "\">\n<h3>Config " << s.row->config_id
@@ -278,6 +299,7 @@ std::string render_markdown(const ReportContent& c) {
   md << "## Configurations\n\n";
   md_table(md, c.table);
   md_falsify(md, c.falsify);
+  md_teaching(md, c.teaching);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -290,6 +312,7 @@ std::string render_html(const ReportContent& c) {
   html_runs(h, c);
   html_overview(h, c.overview);
   html_falsify(h, c.falsify);
+  html_teaching(h, c.teaching);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

@@ -79,6 +79,9 @@ struct ReportContent {
   // "Adversarial rollouts": one row per configuration with an adversarial search (falsify_table.cc); no
   // rows, no section.
   Table falsify;
+  // "Teaching sessions": one row per `cmt teach --json` result given to `cmt report --teach`; no rows, no
+  // section.
+  Table teaching;
   std::vector<ConfigSection> sections;
 };
 
@@ -95,6 +98,10 @@ bool is_false_alarm(const ConfigRow& row);
 // The verdict column's text: "reliable", "NOT reliable", "verifier timed out" or "pending".
 std::string verdict_text(const ConfigRow& row);
 
+// A member of a JSON object; missing members, and any member of a non-object, read as null (the sections
+// built from commands' JSON show what the object has).
+const nlohmann::json& json_member(const nlohmann::json& j, const char* key);
+
 // ---- The adversarial search (falsify_table.cc; docs/falsify.md "In sweeps and the report") ----
 
 // The configuration's search (metrics.falsify) when it is done and has one, else nullptr.
@@ -104,6 +111,15 @@ const nlohmann::json* falsify_data(const ConfigRow& row);
 // before -> after, pieces reached / total and the unreached pieces (step, motion, atom name, kind,
 // measure).
 Table falsify_table(const std::vector<ConfigSection>& sections);
+
+// ---- Teaching sessions (teaching_table.cc; docs/teaching.md) ----
+
+// A `cmt teach --json` object and the label it is shown under (its file name).
+struct TeachingRun {
+  std::string label;
+  nlohmann::json result;
+};
+Table teaching_table(const std::vector<TeachingRun>& runs);
 // The configuration's note on its search ("" without one): rollouts, ends outside, the farthest one's
 // replay command.
 std::string falsify_note(const ConfigRow& row);

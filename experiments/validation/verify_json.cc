@@ -3,7 +3,6 @@
 #include "experiments/common/point_json.h"
 
 namespace cmt {
-namespace {
 
 nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>& pieces) {
   const int dim = lt.task.dimension;
@@ -29,6 +28,8 @@ nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>
   }
   return out;
 }
+
+namespace {
 
 // A spring motion's free-space rest ball (not an atom).
 nlohmann::json free_piece_json(const LoadedTask& lt, const VerifyStep& s) {

@@ -11,6 +11,9 @@
 
 namespace cmt {
 
+// Termination-style pieces as [{atom, name, kind, polygon, holes?, area?}] (points in the task's dimension).
+nlohmann::json pieces_json(const LoadedTask& task, const std::vector<ReachedPiece>& pieces);
+
 // with_reached: each step also lists `reached`, every contact point the motion may pass through.
 nlohmann::json verify_json(const LoadedTask& task, const VerifyResult& result, double seconds,
                            bool with_reached = false);

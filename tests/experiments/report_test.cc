@@ -922,4 +922,34 @@ TEST(Report, BadDatabasesExitWithStatus2) {
   EXPECT_EQ(status, 2);
 }
 
+TEST(Report, TeachingSessionsSectionListsEachSession) {
+  const json session = {
+      {"task", "hole"},
+      {"solved", true},
+      {"strategy", {"p2", "p1"}},
+      {"seconds", 8.5},
+      {"steps",
+       {{{"motion", "p1"},
+         {"chain", {"p1"}},
+         {"solved_measure", 0.0},
+         {"remaining_measure", 2.0},
+         {"failure", "termination of motion 'p1' is not inside the goal"}},
+        {{"motion", "p2"}, {"chain", {"p2", "p1"}}, {"solved_measure", 2.0}, {"remaining_measure", 0.0}}}},
+      {"check", {{"rollouts", 20}, {"successes", 19}, {"failures", 0}, {"outside", 0}, {"unstable", 1}}}};
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  EXPECT_EQ(cmt::report::render_markdown(content).find("Teaching sessions"), std::string::npos);
+  content.teaching = cmt::report::teaching_table({{"hole_teach.json", session}});
+  const std::string md = cmt::report::render_markdown(content);
+  EXPECT_NE(
+      md.find("| hole | hole_teach.json | yes | (p2, p1) | p1 (p1): solved 0, left 2 (termination of "
+              "motion 'p1' is not inside the goal); p2 (p2, p1): solved 2, left 0 | 19 / 20 reached the "
+              "goal, 0 failed, 0 ends outside the prediction, 1 unstable | 8.5 |"),
+      std::string::npos)
+      << md;
+  const std::string html = cmt::report::render_html(content);
+  EXPECT_NE(html.find("<h2 id=\"teaching\">Teaching sessions</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<td>(p2, p1)</td>"), std::string::npos) << html;
+}
+
 }  // namespace

@@ -1,0 +1,81 @@
+// The report's "Teaching sessions" section (report_table.h teaching_table; docs/teaching.md "In the main
+// job"): one row per `cmt teach --json` object given to `cmt report --teach`.
+#include <sstream>
+
+#include "experiments/report/report_table.h"
+
+namespace cmt::report {
+namespace {
+
+using nlohmann::json;
+
+Cell text(const std::string& s) { return {{s, "", false, ""}}; }
+
+const json& member(const json& j, const char* key) { return json_member(j, key); }
+
+// A number member, 0 when missing or not a number (the section shows what the object has).
+double number(const json& j, const char* key) {
+  const json& v = member(j, key);
+  return v.is_number() ? v.get<double>() : 0.0;
+}
+
+std::string names(const json& list) {
+  if (!list.is_array()) return "none";
+  std::string out;
+  for (const json& n : list)
+    out += (out.empty() ? "" : ", ") + (n.is_string() ? n.get<std::string>() : n.dump());
+  return "(" + out + ")";
+}
+
+// "p1: solved 0, left 2 (termination of motion 'p1' is not inside the goal); p2: solved 2, left 0".
+std::string steps_text(const json& steps) {
+  if (!steps.is_array()) return "";
+  std::ostringstream out;
+  out.precision(4);
+  for (const json& s : steps) {
+    if (out.tellp() > 0) out << "; ";
+    const json& motion = member(s, "motion");
+    out << (motion.is_string() ? motion.get<std::string>() : "?") << " " << names(member(s, "chain"))
+        << ": solved " << number(s, "solved_measure") << ", left " << number(s, "remaining_measure");
+    if (member(s, "failure").is_string()) out << " (" << member(s, "failure").get<std::string>() << ")";
+  }
+  return out.str();
+}
+
+std::string check_text(const json& check) {
+  if (!check.is_object()) return "not run";
+  std::ostringstream out;
+  out << member(check, "successes").get<int>() << " / " << member(check, "rollouts").get<int>()
+      << " reached the goal, " << member(check, "failures").get<int>() << " failed, "
+      << member(check, "outside").get<int>() << " ends outside the prediction, "
+      << member(check, "unstable").get<int>() << " unstable";
+  return out.str();
+}
+
+}  // namespace
+
+Table teaching_table(const std::vector<TeachingRun>& runs) {
+  Table t;
+  t.headers = {"task",
+               "session",
+               "solved",
+               "taught strategy",
+               "steps (chain: measure solved, left; why)",
+               "pre-image check",
+               "seconds"};
+  for (const TeachingRun& r : runs) {
+    const json& j = r.result;
+    const json& task = member(j, "task");
+    std::ostringstream s;
+    s.precision(3);
+    s << number(j, "seconds");
+    t.rows.push_back(
+        {text(task.is_string() ? task.get<std::string>() : "?"), text(r.label),
+         text(member(j, "solved").is_boolean() && member(j, "solved").get<bool>() ? "yes" : "no"),
+         text(member(j, "strategy").is_array() ? names(member(j, "strategy")) : "none"),
+         text(steps_text(member(j, "steps"))), text(check_text(member(j, "check"))), text(s.str())});
+  }
+  return t;
+}
+
+}  // namespace cmt::report

@@ -1,0 +1,128 @@
+// `cmt teach` output (teach_json.h).
+#include "experiments/teach/teach_json.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include "experiments/common/point_json.h"
+#include "experiments/validation/verify_json.h"
+
+namespace cmt {
+namespace {
+
+// Each cell's pieces (the start set it stands for), with the chain verified from it when it is solved.
+nlohmann::json cells_json(const LoadedTask& task, const std::vector<teaching::StartCell>& cells) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const teaching::StartCell& c : cells)
+    for (nlohmann::json& piece : pieces_json(task, ReachedSet::from_region(task, c.region).pieces())) {
+      piece["cell"] = c.path;
+      if (!c.chain.empty()) piece["chain"] = c.chain;
+      out.push_back(std::move(piece));
+    }
+  return out;
+}
+
+nlohmann::json motion_json(const Motion& m, int dimension) {
+  return {{"name", m.name},
+          {"kind", m.kind == Motion::Kind::kSpring ? "spring" : "damper"},
+          {"commanded", point_json(m.target, dimension)}};
+}
+
+YAML::Node coordinates(const Vec3& v, int dimension) {
+  YAML::Node out(YAML::NodeType::Sequence);
+  out.SetStyle(YAML::EmitterStyle::Flow);
+  out.push_back(v.x());
+  if (dimension == 3) out.push_back(v.y());
+  out.push_back(v.z());
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json teach_step_json(const teaching::Session& session, const teaching::TeachStep& step) {
+  const LoadedTask& task = session.task();
+  const Motion* m = task.task.find_motion(step.motion);
+  nlohmann::json out = {{"motion", step.motion},
+                        {"commanded", motion_json(*m, task.task.dimension)},
+                        {"chain", step.chain},
+                        {"solved_regions", cells_json(task, step.solved)},
+                        {"start_remaining", cells_json(task, step.remaining)},
+                        {"solved_measure", step.solved_measure},
+                        {"remaining_measure", step.remaining_measure},
+                        {"verifications", step.verifications},
+                        {"seconds", step.seconds}};
+  if (!step.remaining.empty()) {
+    out["failure"] = step.failure;
+    out["blocking"] = pieces_json(task, step.blocking);
+    out["unchecked_reason_atoms"] = step.unchecked_reason_atoms;
+  }
+  return out;
+}
+
+nlohmann::json teach_json(const teaching::Session& session, double seconds) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const teaching::TeachStep& s : session.steps()) steps.push_back(teach_step_json(session, s));
+  const auto strategy = session.strategy();
+  return {{"task", session.task().task.name},
+          {"solved", session.solved() && strategy.has_value()},
+          {"start_solved", session.solved()},
+          {"steps", steps},
+          {"strategy", strategy ? nlohmann::json(*strategy) : nlohmann::json(nullptr)},
+          {"seconds", seconds}};
+}
+
+std::string free_strategy_name(const Task& task, const std::string& wanted) {
+  std::string name = wanted;
+  for (int k = 2; task.find_strategy(name); ++k) name = wanted + "_" + std::to_string(k);
+  return name;
+}
+
+namespace {
+
+YAML::Node taught_task_node(const std::string& task_yaml, const teaching::Session& session,
+                            const std::vector<std::string>& strategy, const std::string& strategy_name) {
+  YAML::Node root = YAML::Load(task_yaml);
+  const int dimension = session.task().task.dimension;
+  for (const Motion& m : session.inline_motions()) {
+    YAML::Node motion;
+    motion[m.kind == Motion::Kind::kSpring ? "spring" : "damper"] = coordinates(m.target, dimension);
+    root["motions"][m.name] = motion;
+  }
+  YAML::Node list(YAML::NodeType::Sequence);
+  list.SetStyle(YAML::EmitterStyle::Flow);
+  for (const std::string& name : strategy) list.push_back(name);
+  root["strategies"][strategy_name] = list;
+  return root;
+}
+
+std::string emit(const YAML::Node& root) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace
+
+std::string taught_task_yaml(const std::string& task_yaml, const teaching::Session& session,
+                             const std::vector<std::string>& strategy, const std::string& strategy_name) {
+  return emit(taught_task_node(task_yaml, session, strategy, strategy_name));
+}
+
+std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
+                           const std::vector<std::string>& strategy, const std::string& strategy_name,
+                           const Region& start) {
+  YAML::Node root = taught_task_node(task_yaml, session, strategy, strategy_name);
+  const int dimension = session.task().task.dimension;
+  YAML::Node region;
+  if (start.kind == Region::Kind::kPoint) {
+    region["point"] = coordinates(start.points.front(), dimension);
+  } else {
+    YAML::Node points(YAML::NodeType::Sequence);
+    for (const Vec3& p : start.points) points.push_back(coordinates(p, dimension));
+    region[start.kind == Region::Kind::kSegment ? "segment" : "polygon"] = points;
+  }
+  root["start"] = region;
+  return emit(root);
+}
+
+}  // namespace cmt

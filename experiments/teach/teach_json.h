@@ -1,0 +1,27 @@
+// The `cmt teach --json` object (contracts.md): solved, steps (per step motion, chain, solved_regions and
+// start_remaining as [{atom, name, kind, polygon}], the measures, failure and blocking pieces, counts and
+// seconds), strategy (the taught sequence, or null), and the taught task file that `-o` writes.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "verifier/teaching/teaching_session.h"
+
+namespace cmt {
+
+nlohmann::json teach_step_json(const teaching::Session& session, const teaching::TeachStep& step);
+nlohmann::json teach_json(const teaching::Session& session, double seconds);
+
+// A name for the taught strategy that the task does not use yet: `wanted`, else wanted_2, wanted_3, ...
+std::string free_strategy_name(const Task& task, const std::string& wanted);
+
+// The task file text with the session's inline motions and the taught strategy (named `strategy_name`) added.
+std::string taught_task_yaml(const std::string& task_yaml, const teaching::Session& session,
+                             const std::vector<std::string>& strategy, const std::string& strategy_name);
+// The same with the start replaced by `start` (a solved cell, for the pre-image check).
+std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
+                           const std::vector<std::string>& strategy, const std::string& strategy_name,
+                           const Region& start);
+
+}  // namespace cmt

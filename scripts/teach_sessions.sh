@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The built-in teaching sessions of the main job (docs/teaching.md), each `cmt teach --json` result written to
+# DIR/<session>.json (the report's Teaching sessions section) and each taught task to DIR/<session>.yaml; the
+# solved sessions' pre-images are checked by MuJoCo rollouts from their solved cells (extreme mode, seed 1).
+# Exit status 1 from cmt teach (not solved, or a check failure) is recorded in the JSON; 2 (bad input) stops.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+dir=${1:-out/teach}
+mkdir -p "$dir"
+teach() {  # teach NAME TASK [cmt teach options...]
+  local name=$1 task=$2
+  shift 2
+  local status=0
+  build/bin/cmt teach "models/tasks/$task.yaml" --session "models/sessions/$name.yaml" --json \
+    -o "$dir/$name.yaml" --check-dir "$dir/${name}_cells" --threads 2 --seed 1 "$@" >"$dir/$name.json" || status=$?
+  if [ "$status" -gt 1 ]; then
+    echo "cmt teach $name failed with status $status" >&2
+    exit "$status"
+  fi
+  echo "teach $name: exit $status" >&2
+}
+teach hole_teach hole --check 1000                # Buckley §5.2: (p2, p1)
+teach hole_too_deep hole --depth 1                # p2 too deep: not solved, names the top face
+teach tslot_teach tslot --depth 1 --check 300     # beyond the thesis: (m1, m2)
+teach peg_in_hole_real_teach peg_in_hole_real --check 300  # §6.3.4's scaled hole: (p2, p1)

@@ -1,0 +1,112 @@
+// The teaching system's session loop (Buckley §5.1; verifier/teaching/README.md). The teacher proposes
+// commanded motions, the strategy's last motion first. Each motion m_k gets a pre-image: the start cells
+// from which m_k followed by the chain of an earlier step (C_{k-1} first, then C_{k-2}, ..., then m_k alone)
+// is verified reliable by the forward projection (verify.h). Step k's chain C_k is the candidate that solved
+// the most, or [m_k] ++ C_{k-1} when it solved nothing (its pre-image lies off the start, where later
+// motions may land). Solved cells leave the start; when the start is empty, the chain that solved it is the
+// taught strategy. A step starts from the unsolved cells with halves
+// that are both unsolved merged back: the forward projection of a cell can be looser than that of a larger
+// set (its fixpoint widening is not monotone), so a step first tries the largest unsolved cells.
+//
+// Soundness: a cell counts as solved only when the verifier proves the chain reliable from the whole closed
+// cell, so a solved region is a sound under-approximation of the strong pre-image of the goal under the
+// chain (Buckley §5.4: every trajectory reaches the goal), as sound as the forward projection itself.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/loaded_task.h"
+#include "verifier/reached_set.h"
+#include "verifier/verify.h"
+
+namespace cmt::teaching {
+
+struct TeachOptions {
+  VerifyOptions verify;
+  // How often a start cell may be halved (verifier/teaching/start_cells.h) before it is left unsolved: up to
+  // 2^refine_depth cells per start region, and 2^(refine_depth + 1) - 1 verifications of one chain.
+  int refine_depth = 2;
+  // Atoms of the motion's own termination set checked one by one when explaining an unsolved start.
+  int max_reason_atoms = 12;
+};
+
+// A start cell: its place in the tree of halvings ("" the start, then '0'/'1' per halving) and its region.
+struct StartCell {
+  std::string path;
+  Region region;
+  std::vector<std::string> chain;  // for a solved cell: the sequence verified reliable from it
+  int depth() const { return static_cast<int>(path.size()); }
+};
+
+// One proposed motion and what it solved (a row of Buckley's table of solved regions, §5.1).
+struct TeachStep {
+  std::string motion;
+  std::vector<std::string> chain;    // C_k: the candidate that solved the most, else [m_k] ++ C_{k-1}
+  std::vector<StartCell> solved;     // start cells the chain is verified reliable from
+  std::vector<StartCell> remaining;  // start cells unsolved after this step
+  double solved_measure = 0;         // length or area of the solved cells (0 for a point start)
+  double remaining_measure = 0;
+  // Why cells stayed unsolved: the verifier's failure for the chain from the remaining cells, and the
+  // pieces where m_k may terminate from which C_{k-1} does not reach the goal (for the first step, the
+  // termination pieces outside the goal). Atoms beyond TeachOptions::max_reason_atoms are not checked.
+  std::string failure;
+  std::vector<ReachedPiece> blocking;
+  int unchecked_reason_atoms = 0;
+  int verifications = 0;
+  double seconds = 0;
+  // The taught strategy once this step leaves the start empty (Session::strategy).
+  std::optional<std::vector<std::string>> strategy;
+};
+
+class Session {
+ public:
+  Session(std::shared_ptr<const LoadedTask> task, TeachOptions options);
+
+  // Proposes a motion of the task by name (TaskError when unknown), or an inline motion; an inline motion
+  // without a name is named taught_<k> for step k (1-based), and the task copy this session verifies gains
+  // it.
+  const TeachStep& propose(const std::string& motion_name);
+  const TeachStep& propose(Motion motion);
+  // Removes the last step (and an inline motion it added). False when there is no step.
+  bool undo();
+
+  bool solved() const;
+  const std::vector<TeachStep>& steps() const { return steps_; }
+  const std::vector<StartCell>& remaining() const;
+  // The task with the inline motions added.
+  const LoadedTask& task() const { return *task_; }
+  std::shared_ptr<const LoadedTask> task_ptr() const { return task_; }
+  // The taught strategy once solved: the chain that solved every cell, or, when cells were solved by
+  // different chains, the latest of them that is verified reliable from the whole start; nullopt otherwise.
+  std::optional<std::vector<std::string>> strategy() const;
+  // The inline motions added so far (in step order).
+  const std::vector<Motion>& inline_motions() const { return inline_motions_; }
+
+ private:
+  const TeachStep& run_step(const std::string& motion_name);
+  void refine(const std::vector<std::string>& chain, const StartCell& cell, int max_depth, TeachStep& step,
+              std::vector<StartCell>& unsolved);
+  std::vector<std::vector<std::string>> candidates(const std::string& motion_name) const;
+  std::vector<StartCell> merged(const std::vector<StartCell>& cells) const;
+  VerifyResult verify_from(const Strategy& chain, const ReachedSet& start, TeachStep& step) const;
+  void explain(const std::vector<std::string>& chain, TeachStep& step) const;
+  std::optional<std::vector<std::string>> taught_strategy() const;
+
+  std::shared_ptr<const LoadedTask> original_;
+  std::shared_ptr<const LoadedTask> task_;
+  TeachOptions options_;
+  std::vector<TeachStep> steps_;
+  std::vector<Motion> inline_motions_;
+  std::vector<bool> step_added_motion_;  // per step: it added the last inline motion
+  std::vector<StartCell> initial_;
+  std::map<std::string, Region> cells_;  // every cell made so far, by path
+};
+
+// The union of the cells' start sets (ReachedSet::from_region, rounded outward).
+ReachedSet cells_set(const LoadedTask& task, const std::vector<StartCell>& cells);
+
+}  // namespace cmt::teaching
