@@ -12,7 +12,8 @@ teach() {  # teach NAME TASK [cmt teach options...]
   shift 2
   local status=0
   build/bin/cmt teach "models/tasks/$task.yaml" --session "models/sessions/$name.yaml" --json \
-    -o "$dir/$name.yaml" --check-dir "$dir/${name}_cells" --threads 2 --seed 1 "$@" >"$dir/$name.json" || status=$?
+    -o "$dir/$name.yaml" --check-dir "$dir/${name}_cells" --view "$dir/${name}_view" --threads 2 --seed 1 "$@" \
+    >"$dir/$name.json" || status=$?
   if [ "$status" -gt 1 ]; then
     echo "cmt teach $name failed with status $status" >&2
     exit "$status"

@@ -12,6 +12,8 @@
 #include "controllers/termination.h"
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/cli/teach_view.h"
+#include "experiments/report/view_page.h"
 #include "experiments/teach/preimage_check.h"
 #include "experiments/teach/session_file.h"
 #include "experiments/teach/teach_json.h"
@@ -91,6 +93,7 @@ struct TeachCli {
   std::uint64_t seed = 1;
   int threads = 1;
   std::string check_mode = "extreme", check_dir;
+  std::string view;  // directory of the 3-D page, "" = none
 };
 
 const teaching::TeachStep& propose(teaching::Session& session, const SessionStep& step) {
@@ -195,11 +198,17 @@ void run_teach(const TeachCli& cli, CommandState& state) {
     check = check_preimages(read_text(cli.task), session, o);
   }
   const bool check_failed = check && (check->failures > 0 || check->outside > 0);
+  const std::filesystem::path page = std::filesystem::path(cli.view) / "index.html";
+  if (!cli.view.empty()) {
+    report::write_view_assets(cli.view);
+    report::write_view_page(teach_view_data(session, task->task.name + " / teaching session"), page, ".");
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (state.json) {
     nlohmann::json j = teach_json(session, seconds);
     if (!name.empty()) j["written"] = {{"file", cli.out}, {"strategy", name}};
     if (check) j["check"] = preimage_check_json(*check);
+    if (!cli.view.empty()) j["view"] = page.string();
     print_json(j);
   } else if (solved) {
     std::cout << task->task.name << ": solved; taught strategy [";
@@ -264,6 +273,10 @@ void add_teach_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--check-dir", cli->check_dir,
                   "where the check writes one task file per solved cell (for replays; default: a directory "
                   "under the system's temporary directory)");
+  cmd->add_option(
+      "--view", cli->view,
+      "write a 3-D page of the session to DIR/index.html: per step the solved and remaining start "
+      "cells, where the motion may stop, and the stops to avoid (docs/teaching.md)");
   cmd->callback([cli, &state] { run_teach(*cli, state); });
 }
 

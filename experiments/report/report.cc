@@ -191,7 +191,9 @@ class ReportBuilder {
 
 namespace {
 
-std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::path>& files) {
+// The runs and, for a result with a 3-D page (`cmt teach --view`), the page relative to the report directory.
+std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::path>& files,
+                                            const std::filesystem::path& out_dir) {
   std::vector<TeachingRun> runs;
   for (const std::filesystem::path& f : files) {
     std::ifstream in(f);
@@ -199,7 +201,12 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     if (j.is_discarded() || !j.is_object() || !j.contains("solved") || !j.contains("steps"))
       throw TaskError(f.string(), "", "not a `cmt teach --json` result (an object with solved and steps)");
-    runs.push_back({f.filename().string(), std::move(j)});
+    std::string link;
+    if (j.contains("view") && j["view"].is_string())
+      link = std::filesystem::relative(std::filesystem::absolute(j["view"].get<std::string>()),
+                                       std::filesystem::absolute(out_dir))
+                 .generic_string();
+    runs.push_back({f.filename().string(), std::move(j), link});
   }
   return runs;
 }
@@ -209,7 +216,7 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
                            const StickClassOf& stick_class, const CounterexampleReplay& replay,
                            const std::vector<std::filesystem::path>& teach_results) {
-  const std::vector<TeachingRun> teaching = read_teaching_runs(teach_results);
+  const std::vector<TeachingRun> teaching = read_teaching_runs(teach_results, out_dir);
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
   ReportBuilder builder(db, out_dir, stick_class, replay);

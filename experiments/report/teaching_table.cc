@@ -69,8 +69,10 @@ Table teaching_table(const std::vector<TeachingRun>& runs) {
     std::ostringstream s;
     s.precision(3);
     s << number(j, "seconds");
+    Cell session = text(r.label);
+    if (!r.view_link.empty()) session.push_back({"3-D view", r.view_link, false, ""});
     t.rows.push_back(
-        {text(task.is_string() ? task.get<std::string>() : "?"), text(r.label),
+        {text(task.is_string() ? task.get<std::string>() : "?"), session,
          text(member(j, "solved").is_boolean() && member(j, "solved").get<bool>() ? "yes" : "no"),
          text(member(j, "strategy").is_array() ? names(member(j, "strategy")) : "none"),
          text(steps_text(member(j, "steps"))), text(check_text(member(j, "check"))), text(s.str())});

@@ -50,7 +50,9 @@ nlohmann::json teach_step_json(const teaching::Session& session, const teaching:
                         {"remaining_measure", step.remaining_measure},
                         {"verifications", step.verifications},
                         {"seconds", step.seconds}};
+  out["stops_from_solved"] = pieces_json(task, step.stops_from_solved);
   if (!step.remaining.empty()) {
+    out["stops_from_remaining"] = pieces_json(task, step.stops_from_remaining);
     out["failure"] = step.failure;
     out["blocking"] = pieces_json(task, step.blocking);
     out["unchecked_reason_atoms"] = step.unchecked_reason_atoms;

@@ -939,17 +939,20 @@ TEST(Report, TeachingSessionsSectionListsEachSession) {
   cmt::report::ResultsDb db;
   cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
   EXPECT_EQ(cmt::report::render_markdown(content).find("Teaching sessions"), std::string::npos);
-  content.teaching = cmt::report::teaching_table({{"hole_teach.json", session}});
+  content.teaching =
+      cmt::report::teaching_table({{"hole_teach.json", session, "../teach/hole_view/index.html"}});
   const std::string md = cmt::report::render_markdown(content);
   EXPECT_NE(
-      md.find("| hole | hole_teach.json | yes | (p2, p1) | p1 (p1): solved 0, left 2 (termination of "
-              "motion 'p1' is not inside the goal); p2 (p2, p1): solved 2, left 0 | 19 / 20 reached the "
+      md.find("| hole | hole_teach.json [3-D view](../teach/hole_view/index.html) | yes | (p2, p1) | p1 "
+              "(p1): solved 0, left 2 (termination of motion 'p1' is not inside the goal); p2 (p2, p1): "
+              "solved 2, left 0 | 19 / 20 reached the "
               "goal, 0 failed, 0 ends outside the prediction, 1 unstable | 8.5 |"),
       std::string::npos)
       << md;
   const std::string html = cmt::report::render_html(content);
   EXPECT_NE(html.find("<h2 id=\"teaching\">Teaching sessions</h2>"), std::string::npos);
   EXPECT_NE(html.find("<td>(p2, p1)</td>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<a href=\"../teach/hole_view/index.html\">3-D view</a>"), std::string::npos) << html;
 }
 
 }  // namespace

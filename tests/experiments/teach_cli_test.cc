@@ -4,6 +4,7 @@
 
 #include <array>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "tests/experiments/cmt_runner.h"
@@ -50,7 +51,9 @@ TEST(CmtTeach, CornerSessionPrintsTheStepsWritesTheTaughtTaskAndItVerifies) {
   const std::string session =
       session_file("corner_session", "steps:\n  - lift\n  - {damper: [1, 0, -0.3]}\n");
   const std::string out = testing::TempDir() + "/corner_taught.yaml";
-  const Result r = run("teach " + corner() + " --session " + session + " --json -o " + out);
+  const std::string view = testing::TempDir() + "/corner_view";
+  const Result r =
+      run("teach " + corner() + " --session " + session + " --json -o " + out + " --view " + view);
   ASSERT_EQ(r.status, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["solved"].get<bool>());
@@ -69,6 +72,15 @@ TEST(CmtTeach, CornerSessionPrintsTheStepsWritesTheTaughtTaskAndItVerifies) {
   EXPECT_TRUE(j["steps"][1]["start_remaining"].empty());
   EXPECT_EQ(j["strategy"], nlohmann::json::array({"taught_2"}));
   EXPECT_EQ(j["written"]["strategy"], "taught");
+  EXPECT_FALSE(j["steps"][1]["stops_from_solved"].empty());
+  // The 3-D page: per step a group of layers (step 1 with the stops to avoid, step 2 with the solved cells).
+  EXPECT_EQ(j["view"], view + "/index.html");
+  std::ifstream page(view + "/index.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("\"group\":\"step 1: lift\""), std::string::npos);
+  EXPECT_NE(html.find("stops from which the earlier motions fail"), std::string::npos);
+  EXPECT_NE(html.find("\"group\":\"step 2: taught_2\""), std::string::npos);
+  EXPECT_NE(html.find("solved start cells"), std::string::npos);
   const Result v = run("verify " + out + " --strategy taught --json");
   EXPECT_EQ(v.status, 0) << v.out;
   EXPECT_TRUE(nlohmann::json::parse(v.out)["reliable"].get<bool>());

@@ -87,9 +87,13 @@ VerifyResult Session::verify_from(const Strategy& chain, const ReachedSet& start
 // Verifies the chain from the closed cell; halves it while the chain is not reliable from the whole.
 void Session::refine(const std::vector<std::string>& chain, const StartCell& cell, int max_depth,
                      TeachStep& step, std::vector<StartCell>& unsolved) {
-  if (verify_from(chain_strategy(chain), ReachedSet::from_region(*task_, cell.region), step).reliable) {
+  const VerifyResult r =
+      verify_from(chain_strategy(chain), ReachedSet::from_region(*task_, cell.region), step);
+  if (r.reliable) {
     step.solved.push_back(cell);
     step.solved.back().chain = chain;
+    for (ReachedPiece& p : r.steps.front().termination.pieces())
+      step.stops_from_solved.push_back(std::move(p));
     return;
   }
   if (cell.depth() < max_depth) {
@@ -127,6 +131,7 @@ void Session::explain(const std::vector<std::string>& motions, TeachStep& step) 
                        "union (a rounding artefact at the cut points)"
                      : r.failure;
   if (r.steps.empty()) return;
+  step.stops_from_remaining = r.steps.front().termination.pieces();
   if (chain.motions.size() == 1) {
     step.blocking = r.outside_goal;
     return;

@@ -56,6 +56,10 @@ struct TeachStep {
   std::string failure;
   std::vector<ReachedPiece> blocking;
   int unchecked_reason_atoms = 0;
+  // Where m_k may stop (its termination set, the first motion of the chain): from the cells it solved (one
+  // piece list per verification that solved a cell), and from the cells that remain (when explained).
+  // Buckley's Figs 5.4 and 5.7 draw the non-goal part of these: the weak sticking points to avoid.
+  std::vector<ReachedPiece> stops_from_solved, stops_from_remaining;
   int verifications = 0;
   double seconds = 0;
   // The taught strategy once this step leaves the start empty (Session::strategy).

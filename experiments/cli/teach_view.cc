@@ -1,0 +1,79 @@
+// Layers of a teaching session's 3-D page (teach_view.h).
+#include "experiments/cli/teach_view.h"
+
+#include "experiments/report/view_data.h"
+
+namespace cmt {
+namespace {
+
+using nlohmann::json;
+
+json point(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+json points(const std::vector<Vec3>& ps) {
+  json out = json::array();
+  for (const Vec3& p : ps) out.push_back(point(p));
+  return out;
+}
+
+void add_pieces(json& layer, const LoadedTask& task, const std::vector<ReachedPiece>& pieces,
+                const std::string& what) {
+  for (const ReachedPiece& p : pieces) {
+    const json info = {{"atom", p.atom}, {"name", task.cspace.atom_name(p.atom)}, {"what", what}};
+    if (p.polygon.size() == 1) {
+      layer["points"].push_back({{"point", point(p.polygon.front())}, {"info", info}});
+    } else if (p.polygon.size() == 2) {
+      layer["segments"].push_back({{"points", points(p.polygon)}, {"info", info}});
+    } else if (p.polygon.size() > 2) {
+      json holes = json::array();
+      for (const std::vector<Vec3>& h : p.holes) holes.push_back(points(h));
+      layer["polygons"].push_back({{"points", points(p.polygon)}, {"holes", holes}, {"info", info}});
+    }
+  }
+}
+
+std::vector<ReachedPiece> cell_pieces(const LoadedTask& task, const std::vector<teaching::StartCell>& cells) {
+  std::vector<ReachedPiece> out;
+  for (const teaching::StartCell& c : cells)
+    for (ReachedPiece& p : ReachedSet::from_region(task, c.region).pieces()) out.push_back(std::move(p));
+  return out;
+}
+
+}  // namespace
+
+json teach_view_data(const teaching::Session& session, const std::string& title) {
+  const LoadedTask& task = session.task();
+  report::ViewInput input;
+  input.task = &task;
+  input.title = title;
+  json data = report::view_data(input);
+  const std::vector<teaching::TeachStep>& steps = session.steps();
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const teaching::TeachStep& s = steps[k];
+    const std::string id = "step" + std::to_string(k + 1);
+    const std::string group = "step " + std::to_string(k + 1) + ": " + s.motion;
+    struct LayerSpec {
+      std::string suffix, name, color;
+      double opacity;
+      std::vector<ReachedPiece> pieces;
+    };
+    const std::vector<LayerSpec> specs = {
+        {"solved", "solved start cells", "#00a36c", 0.9, cell_pieces(task, s.solved)},
+        {"remaining", "start remaining", "#f0b400", 0.9, cell_pieces(task, s.remaining)},
+        {"stops-solved", s.motion + " may stop here (from the solved cells)", "#1f77b4", 0.5,
+         s.stops_from_solved},
+        {"stops-remaining", s.motion + " may stop here (from the remaining start)", "#ff7f0e", 0.5,
+         s.stops_from_remaining},
+        {"avoid", "stops from which the earlier motions fail (points to avoid)", "#d62728", 0.8, s.blocking}};
+    for (const LayerSpec& spec : specs) {
+      if (spec.pieces.empty()) continue;
+      json layer = report::make_layer(id + "-" + spec.suffix, spec.name, group, spec.color, spec.opacity);
+      add_pieces(layer, task, spec.pieces, spec.name);
+      layer["visible"] = k + 1 == steps.size();  // the last step shown first; the others a click away
+      data["layers"].push_back(std::move(layer));
+    }
+  }
+  return data;
+}
+
+}  // namespace cmt
