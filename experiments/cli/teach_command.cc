@@ -12,6 +12,7 @@
 #include "controllers/termination.h"
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/cli/sticking_command.h"
 #include "experiments/cli/teach_view.h"
 #include "experiments/report/view_page.h"
 #include "experiments/teach/preimage_check.h"
@@ -34,8 +35,12 @@ std::string interval(double lo, double hi) {
   return out.str();
 }
 
-// "f4 (x in [-6, -1], y in [-6, 6], z = 0)": the atom and the bounding box of its pieces.
-std::string pieces_text(const LoadedTask& task, const std::vector<ReachedPiece>& pieces) {
+// "f4 (may stick; x in [-6, -1], y in [-6, 6], z = 0)": the atom, the motion's stick class there (`cmt
+// sticking`: must, may, or never when only a slow-slide stop or the contact lift ends the motion there) and
+// the bounding box of its pieces.
+std::string pieces_text(const LoadedTask& task, const std::string& motion,
+                        const std::vector<ReachedPiece>& pieces) {
+  static const report::StickClassOf stick_class = verifier_stick_classes();
   std::map<int, std::pair<Vec3, Vec3>> boxes;
   for (const ReachedPiece& p : pieces)
     for (const Vec3& q : p.polygon) {
@@ -45,9 +50,9 @@ std::string pieces_text(const LoadedTask& task, const std::vector<ReachedPiece>&
     }
   std::string out;
   for (const auto& [atom, box] : boxes) {
-    out += (out.empty() ? "" : ", ") + task.cspace.atom_name(atom) + " (x " +
-           interval(box.first.x(), box.second.x()) + ", y " + interval(box.first.y(), box.second.y()) +
-           ", z " + interval(box.first.z(), box.second.z()) + ")";
+    out += (out.empty() ? "" : ", ") + task.cspace.atom_name(atom) + " (" + stick_class(task, motion, atom) +
+           " stick; x " + interval(box.first.x(), box.second.x()) + ", y " +
+           interval(box.first.y(), box.second.y()) + ", z " + interval(box.first.z(), box.second.z()) + ")";
   }
   return out;
 }
@@ -71,7 +76,7 @@ void print_step(std::ostream& os, const teaching::Session& session, const teachi
       os << "  " << step.motion
          << (step.chain.size() == 1 ? " may stop outside the goal at: "
                                     : " may stop where the motions taught before do not reach the goal: ")
-         << pieces_text(session.task(), step.blocking) << "\n";
+         << pieces_text(session.task(), step.motion, step.blocking) << "\n";
     if (step.unchecked_reason_atoms > 0)
       os << "  (" << step.unchecked_reason_atoms << " more termination atoms not checked)\n";
   }
