@@ -172,6 +172,7 @@ void run_teach(const TeachCli& cli, CommandState& state) {
                     rollout_servo_coast(*task)};
   teaching::Session session(task, options);
   std::vector<SessionStep> transcript;
+  std::size_t skipped_steps = 0;
   if (cli.session.empty()) {
     interactive(session, transcript, state.json ? std::cerr : std::cout);
   } else {
@@ -180,7 +181,11 @@ void run_teach(const TeachCli& cli, CommandState& state) {
       const teaching::TeachStep& step = propose(session, s);
       if (!state.json) print_step(std::cout, session, step, session.steps().size() - 1);
     }
+    if (!state.json && session.steps().size() < steps.size())
+      std::cout << "the start was solved after step " << session.steps().size() << "; the session's last "
+                << steps.size() - session.steps().size() << " step(s) were not run\n";
   }
+  skipped_steps = steps.size() - std::min(steps.size(), session.steps().size());
   const auto strategy = session.strategy();
   const bool solved = session.solved() && strategy.has_value();
   std::string name;
@@ -212,6 +217,13 @@ void run_teach(const TeachCli& cli, CommandState& state) {
   if (state.json) {
     nlohmann::json j = teach_json(session, seconds);
     if (!name.empty()) j["written"] = {{"file", cli.out}, {"strategy", name}};
+    j["session"] = cli.session.empty() ? nlohmann::json(nullptr) : nlohmann::json(cli.session);
+    j["steps_not_run"] = skipped_steps;
+    j["options"] = {{"depth", cli.depth},
+                    {"spring_model", spring_model_name(options.verify.spring_model)},
+                    {"stop_relative_speed", options.verify.stop_relative_speed},
+                    {"contact_lift", options.verify.contact_lift},
+                    {"servo_coast", options.verify.servo_coast}};
     if (check) j["check"] = preimage_check_json(*check);
     if (!cli.view.empty()) j["view"] = page.string();
     print_json(j);

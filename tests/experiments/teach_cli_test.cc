@@ -95,6 +95,18 @@ TEST(CmtTeach, UnsolvedSessionExitsOne) {
   EXPECT_TRUE(j["strategy"].is_null());
 }
 
+TEST(CmtTeach, StepsAfterTheStartIsSolvedAreNotRun) {
+  const std::string session = session_file("corner_extra", "steps: [{damper: [1, 0, -0.3]}, lift]\n");
+  const Result r = run("teach " + corner() + " --session " + session + " --json --depth 1");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["steps"].size(), 1u);
+  EXPECT_EQ(j["steps_not_run"], 1);
+  EXPECT_EQ(j["session"], session);
+  EXPECT_EQ(j["options"]["depth"], 1);
+  EXPECT_EQ(j["options"]["spring_model"], "velocity");
+}
+
 TEST(CmtTeach, InteractiveModeReadsMotionsAndUndoFromStdin) {
   const std::string transcript = testing::TempDir() + "/corner_transcript.yaml";
   const std::string cmd = "printf 'lift\\nundo\\nlift\\nspring 1 2\\ndamper 1 0 -0.3\\nsave " + transcript +
