@@ -84,15 +84,38 @@ VerifyResult Session::verify_from(const Strategy& chain, const ReachedSet& start
   return verify_strategy_from(*task_, chain, start, options_.verify);
 }
 
+const Session::FirstMotion& Session::first_motion(const std::string& motion, const StartCell& cell,
+                                                  TeachStep& step) {
+  auto it = first_motions_.find(cell.path);
+  if (it != first_motions_.end()) return it->second;
+  VerifyResult r = verify_from(chain_strategy({motion}), ReachedSet::from_region(*task_, cell.region), step);
+  VerifyStep& s = r.steps.front();
+  FirstMotion first{!s.may_not_terminate && s.slide_forever.empty() && !s.free_termination,
+                    std::move(s.termination)};
+  return first_motions_.emplace(cell.path, std::move(first)).first->second;
+}
+
+// The chain is reliable from the cell exactly when verify_strategy_from says so: a sequence is simulated
+// motion by motion, each from the termination set of the one before (verify.cc), so the first motion's
+// simulation is computed once per cell and each chain continues from its termination set.
+bool Session::chain_reliable(const std::vector<std::string>& chain, const StartCell& cell, TeachStep& step) {
+  const FirstMotion& first = first_motion(chain.front(), cell, step);
+  if (!first.terminates) return false;
+  if (chain.size() == 1) {
+    const ReachedSet goal = ReachedSet::from_regions(*task_, task_->task.goal);
+    return first.termination.pieces_outside(goal, kGoalRelativeTolerance * task_->cspace.scale()).empty();
+  }
+  const std::vector<std::string> rest(chain.begin() + 1, chain.end());
+  return verify_from(chain_strategy(rest), first.termination, step).reliable;
+}
+
 // Verifies the chain from the closed cell; halves it while the chain is not reliable from the whole.
 void Session::refine(const std::vector<std::string>& chain, const StartCell& cell, int max_depth,
                      TeachStep& step, std::vector<StartCell>& unsolved) {
-  const VerifyResult r =
-      verify_from(chain_strategy(chain), ReachedSet::from_region(*task_, cell.region), step);
-  if (r.reliable) {
+  if (chain_reliable(chain, cell, step)) {
     step.solved.push_back(cell);
     step.solved.back().chain = chain;
-    for (ReachedPiece& p : r.steps.front().termination.pieces())
+    for (ReachedPiece& p : first_motion(chain.front(), cell, step).termination.pieces())
       step.stops_from_solved.push_back(std::move(p));
     return;
   }
@@ -123,22 +146,33 @@ std::vector<std::vector<std::string>> Session::candidates(const std::string& mot
 
 // Why the remaining cells are not solved: the chain's failure from them, and where the proposed motion may
 // stop such that the earlier chain fails from there (Buckley §5.2: "the robot may stick on the way").
-void Session::explain(const std::vector<std::string>& motions, TeachStep& step) const {
+void Session::explain(const std::vector<std::string>& motions, TeachStep& step) {
   const Strategy chain = chain_strategy(motions);
-  const VerifyResult r = verify_from(chain, cells_set(*task_, step.remaining), step);
-  step.failure = r.reliable
-                     ? "every remaining cell fails alone, but the verifier proves the chain from their "
-                       "union (a rounding artefact at the cut points)"
-                     : r.failure;
-  if (r.steps.empty()) return;
-  step.stops_from_remaining = r.steps.front().termination.pieces();
-  if (chain.motions.size() == 1) {
-    step.blocking = r.outside_goal;
-    return;
+  const Strategy rest = chain_strategy(std::vector<std::string>(motions.begin() + 1, motions.end()));
+  ReachedSet termination(task_->cspace);
+  const auto cached =
+      step.remaining.size() == 1 ? first_motions_.find(step.remaining.front().path) : first_motions_.end();
+  if (cached != first_motions_.end() && cached->second.terminates) {
+    // One unsolved cell whose first motion was simulated: the chain's failure is the rest's from its stops.
+    termination = cached->second.termination;
+    if (motions.size() == 1) {
+      const ReachedSet goal = ReachedSet::from_regions(*task_, task_->task.goal);
+      step.failure = "termination of motion '" + motions.front() + "' is not inside the goal";
+      step.blocking = termination.pieces_outside(goal, kGoalRelativeTolerance * task_->cspace.scale());
+    } else {
+      step.failure = verify_from(rest, termination, step).failure;
+    }
+  } else {
+    VerifyResult r = verify_from(chain, cells_set(*task_, step.remaining), step);
+    step.failure = r.reliable ? "every remaining cell fails alone, but the verifier proves the chain from "
+                                "their union (a rounding artefact at the cut points)"
+                              : r.failure;
+    if (r.steps.empty()) return;
+    termination = std::move(r.steps.front().termination);
+    if (motions.size() == 1) step.blocking = std::move(r.outside_goal);
   }
-  const ReachedSet& termination = r.steps.front().termination;
-  const Strategy rest =
-      chain_strategy(std::vector<std::string>(chain.motions.begin() + 1, chain.motions.end()));
+  step.stops_from_remaining = termination.pieces();
+  if (motions.size() == 1) return;
   int checked = 0;
   for (const int atom : termination.atoms()) {  // faces first (atom ids: faces, edges, vertices)
     if (checked == options_.max_reason_atoms) {
@@ -179,6 +213,7 @@ const TeachStep& Session::run_step(const std::string& motion_name) {
   const auto t0 = std::chrono::steady_clock::now();
   TeachStep step;
   step.motion = motion_name;
+  first_motions_.clear();
   const std::vector<std::vector<std::string>> chains = candidates(motion_name);
   std::vector<StartCell> cells = merged(remaining());
   double best = 0;

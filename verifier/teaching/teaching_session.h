@@ -60,7 +60,7 @@ struct TeachStep {
   // piece list per verification that solved a cell), and from the cells that remain (when explained).
   // Buckley's Figs 5.4 and 5.7 draw the non-goal part of these: the weak sticking points to avoid.
   std::vector<ReachedPiece> stops_from_solved, stops_from_remaining;
-  int verifications = 0;
+  int verifications = 0;  // verifier runs: the motion once per cell tried, each chain's rest from its stops
   double seconds = 0;
   // The taught strategy once this step leaves the start empty (Session::strategy).
   std::optional<std::vector<std::string>> strategy;
@@ -97,7 +97,15 @@ class Session {
   std::vector<std::vector<std::string>> candidates(const std::string& motion_name) const;
   std::vector<StartCell> merged(const std::vector<StartCell>& cells) const;
   VerifyResult verify_from(const Strategy& chain, const ReachedSet& start, TeachStep& step) const;
-  void explain(const std::vector<std::string>& chain, TeachStep& step) const;
+  // The proposed motion's simulation from a cell, shared by the chains a step tries on it.
+  struct FirstMotion {
+    bool terminates = false;  // no failure of the motion itself (verify.cc: may not terminate, may slide
+                              // forever, may rest in free space)
+    ReachedSet termination;
+  };
+  const FirstMotion& first_motion(const std::string& motion, const StartCell& cell, TeachStep& step);
+  bool chain_reliable(const std::vector<std::string>& chain, const StartCell& cell, TeachStep& step);
+  void explain(const std::vector<std::string>& chain, TeachStep& step);
   std::optional<std::vector<std::string>> taught_strategy() const;
 
   std::shared_ptr<const LoadedTask> original_;
@@ -107,7 +115,8 @@ class Session {
   std::vector<Motion> inline_motions_;
   std::vector<bool> step_added_motion_;  // per step: it added the last inline motion
   std::vector<StartCell> initial_;
-  std::map<std::string, Region> cells_;  // every cell made so far, by path
+  std::map<std::string, Region> cells_;               // every cell made so far, by path
+  std::map<std::string, FirstMotion> first_motions_;  // of the step being run, by cell path
 };
 
 // The union of the cells' start sets (ReachedSet::from_region, rounded outward).
