@@ -154,7 +154,8 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
     try {
       SessionStep step = parse_line(line, session.task().task);
       transcript.push_back(step);
-      print_step(os, session, propose(session, step), session.steps().size() - 1);
+      const teaching::TeachStep& taught = propose(session, step);  // before steps().size() is read
+      print_step(os, session, taught, session.steps().size() - 1);
     } catch (const TaskError& e) {
       os << e.reason() << " (" << e.key() << ")\n";
     }

@@ -123,6 +123,18 @@ TEST(CmtTeach, InteractiveModeReadsMotionsAndUndoFromStdin) {
   ASSERT_EQ(j["steps"].size(), 2u);  // lift, undone, lift again; the bad line is refused
   EXPECT_EQ(j["steps"][0]["motion"], "lift");
   EXPECT_EQ(j["strategy"].size(), 1u);
+
+  // Without --json the step summaries come on stdout, numbered from 1 after the undo too.
+  const std::string text_cmd = "printf 'lift\\nundo\\nlift\\ndamper 1 0 -0.3\\n' | " +
+                               std::string(CMT_BINARY) + " teach " + corner() + " 2>/dev/null";
+  FILE* text_pipe = popen(text_cmd.c_str(), "r");
+  ASSERT_NE(text_pipe, nullptr);
+  std::string text;
+  while (fgets(buf.data(), buf.size(), text_pipe)) text += buf.data();
+  pclose(text_pipe);
+  EXPECT_NE(text.find("step 1: lift"), std::string::npos) << text;
+  EXPECT_NE(text.find("step 2: taught_2"), std::string::npos) << text;
+  EXPECT_EQ(text.find("step 0"), std::string::npos) << text;
 }
 
 // Buckley §5.2 taught with the rollouts' model, then checked by physics: rollouts from the solved cells
