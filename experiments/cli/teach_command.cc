@@ -24,6 +24,8 @@
 namespace cmt {
 namespace {
 
+using teaching::TeachOptions;
+
 std::string interval(double lo, double hi) {
   std::ostringstream out;
   out.precision(4);
@@ -162,91 +164,121 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
   }
 }
 
-void run_teach(const TeachCli& cli, CommandState& state) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto task = load_task(cli.task);
-  const std::vector<SessionStep> steps =
-      cli.session.empty() ? std::vector<SessionStep>{} : load_session(cli.session, task->task);
-  teaching::TeachOptions options;
-  options.refine_depth = cli.depth;
-  options.verify = {cli.spring_model, kStopRelativeSpeed, rollout_contact_lift(*task),
-                    rollout_servo_coast(*task)};
-  teaching::Session session(task, options);
-  std::vector<SessionStep> transcript;
-  std::size_t skipped_steps = 0;
+// Proposes the session file's steps (until the start is solved), or reads them from stdin. Returns how many
+// of the file's steps were not run.
+std::size_t run_session(const TeachCli& cli, const Task& task, teaching::Session& session, bool json) {
   if (cli.session.empty()) {
-    interactive(session, transcript, state.json ? std::cerr : std::cout);
-  } else {
-    for (const SessionStep& s : steps) {
-      if (session.solved()) break;
-      const teaching::TeachStep& step = propose(session, s);
-      if (!state.json) print_step(std::cout, session, step, session.steps().size() - 1);
-    }
-    if (!state.json && session.steps().size() < steps.size())
-      std::cout << "the start was solved after step " << session.steps().size() << "; the session's last "
-                << steps.size() - session.steps().size() << " step(s) were not run\n";
+    std::vector<SessionStep> transcript;
+    interactive(session, transcript, json ? std::cerr : std::cout);
+    return 0;
   }
-  skipped_steps = steps.size() - std::min(steps.size(), session.steps().size());
-  const auto strategy = session.strategy();
-  const bool solved = session.solved() && strategy.has_value();
-  std::string name;
-  if (solved && !cli.out.empty()) {
-    name = free_strategy_name(task->task, cli.name);
-    std::ofstream out(cli.out);
-    out << taught_task_yaml(read_text(cli.task), session, *strategy, name);
-    if (!out) throw std::runtime_error("cannot write " + cli.out);
+  const std::vector<SessionStep> steps = load_session(cli.session, task);
+  for (const SessionStep& s : steps) {
+    if (session.solved()) break;
+    const teaching::TeachStep& step = propose(session, s);
+    if (!json) print_step(std::cout, session, step, session.steps().size() - 1);
   }
+  const std::size_t not_run = steps.size() - session.steps().size();
+  if (!json && not_run > 0)
+    std::cout << "the start was solved after step " << session.steps().size() << "; the session's last "
+              << not_run << " step(s) were not run\n";
+  return not_run;
+}
+
+std::optional<PreimageCheck> run_check(const TeachCli& cli, const Task& task,
+                                       const teaching::Session& session) {
+  if (cli.check == 0) return std::nullopt;
+  PreimageCheckOptions o;
+  o.n = cli.check;
+  o.seed = cli.seed;
+  o.threads = cli.threads;
+  o.mode = *parse_sample_mode(cli.check_mode);
+  o.dir = cli.check_dir.empty() ? std::filesystem::temp_directory_path() /
+                                      ("cmt-teach-" + task.name + "-" + std::to_string(cli.seed))
+                                : std::filesystem::path(cli.check_dir);
+  return check_preimages(read_text(cli.task), session, o);
+}
+
+// What `cmt teach` did, for its output.
+struct TeachOutcome {
+  std::optional<std::vector<std::string>> strategy;
+  bool solved = false;
+  std::string written_name;  // the taught strategy's name in the -o file, "" when none was written
+  std::size_t steps_not_run = 0;
   std::optional<PreimageCheck> check;
-  if (cli.check > 0) {
-    PreimageCheckOptions o;
-    o.n = cli.check;
-    o.seed = cli.seed;
-    o.threads = cli.threads;
-    o.mode = *parse_sample_mode(cli.check_mode);
-    o.dir = cli.check_dir.empty() ? std::filesystem::temp_directory_path() /
-                                        ("cmt-teach-" + task->task.name + "-" + std::to_string(cli.seed))
-                                  : std::filesystem::path(cli.check_dir);
-    check = check_preimages(read_text(cli.task), session, o);
-  }
-  const bool check_failed = check && (check->failures > 0 || check->outside > 0);
-  const std::filesystem::path page = std::filesystem::path(cli.view) / "index.html";
-  if (!cli.view.empty()) {
-    report::write_view_assets(cli.view);
-    report::write_view_page(teach_view_data(session, task->task.name + " / teaching session"), page, ".");
-  }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (state.json) {
-    nlohmann::json j = teach_json(session, seconds);
-    if (!name.empty()) j["written"] = {{"file", cli.out}, {"strategy", name}};
-    j["session"] = cli.session.empty() ? nlohmann::json(nullptr) : nlohmann::json(cli.session);
-    j["steps_not_run"] = skipped_steps;
-    j["options"] = {{"depth", cli.depth},
-                    {"spring_model", spring_model_name(options.verify.spring_model)},
-                    {"stop_relative_speed", options.verify.stop_relative_speed},
-                    {"contact_lift", options.verify.contact_lift},
-                    {"servo_coast", options.verify.servo_coast}};
-    if (check) j["check"] = preimage_check_json(*check);
-    if (!cli.view.empty()) j["view"] = page.string();
-    print_json(j);
-  } else if (solved) {
-    std::cout << task->task.name << ": solved; taught strategy [";
-    for (std::size_t i = 0; i < strategy->size(); ++i) std::cout << (i ? ", " : "") << (*strategy)[i];
-    std::cout << "]" << (name.empty() ? "" : ", written to " + cli.out + " as '" + name + "'") << "\n";
+  std::filesystem::path page;  // the 3-D page, empty without --view
+};
+
+nlohmann::json outcome_json(const TeachCli& cli, const teaching::Session& session,
+                            const TeachOptions& options, const TeachOutcome& o, double seconds) {
+  nlohmann::json j = teach_json(session, seconds);
+  if (!o.written_name.empty()) j["written"] = {{"file", cli.out}, {"strategy", o.written_name}};
+  j["session"] = cli.session.empty() ? nlohmann::json(nullptr) : nlohmann::json(cli.session);
+  j["steps_not_run"] = o.steps_not_run;
+  j["options"] = {{"depth", options.refine_depth},
+                  {"spring_model", spring_model_name(options.verify.spring_model)},
+                  {"stop_relative_speed", options.verify.stop_relative_speed},
+                  {"contact_lift", options.verify.contact_lift},
+                  {"servo_coast", options.verify.servo_coast}};
+  if (o.check) j["check"] = preimage_check_json(*o.check);
+  if (!o.page.empty()) j["view"] = o.page.string();
+  return j;
+}
+
+void print_outcome(const TeachCli& cli, const teaching::Session& session, const TeachOutcome& o) {
+  const std::string& name = session.task().task.name;
+  if (o.solved) {
+    std::cout << name << ": solved; taught strategy [";
+    for (std::size_t i = 0; i < o.strategy->size(); ++i) std::cout << (i ? ", " : "") << (*o.strategy)[i];
+    std::cout << "]"
+              << (o.written_name.empty() ? "" : ", written to " + cli.out + " as '" + o.written_name + "'")
+              << "\n";
   } else {
-    std::cout << task->task.name << ": NOT solved"
+    std::cout << name << ": NOT solved"
               << (session.solved() ? " (the start is covered by different chains that no one strategy runs)"
                                    : "")
               << "\n";
   }
-  if (check && !state.json) {
-    std::cout << "pre-image check: " << check->successes << " of " << check->rollouts
-              << " rollouts reached the goal (" << check->unstable << " unstable, " << check->failures
-              << " failed, " << check->outside << " motion ends outside the prediction) from "
-              << check->cells.size() << " solved cell(s)\n";
-    for (const CellCheck& c : check->cells)
-      if (!c.replay.empty()) std::cout << "  failure in " << c.task_file << ": " << c.replay << "\n";
+  if (!o.check) return;
+  const PreimageCheck& c = *o.check;
+  std::cout << "pre-image check: " << c.successes << " of " << c.rollouts << " rollouts reached the goal ("
+            << c.unstable << " unstable, " << c.failures << " failed, " << c.outside
+            << " motion ends outside the prediction) from " << c.cells.size() << " solved cell(s)\n";
+  for (const CellCheck& cell : c.cells)
+    if (!cell.replay.empty()) std::cout << "  failure in " << cell.task_file << ": " << cell.replay << "\n";
+}
+
+void run_teach(const TeachCli& cli, CommandState& state) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto task = load_task(cli.task);
+  TeachOptions options;
+  options.refine_depth = cli.depth;
+  options.verify = {cli.spring_model, kStopRelativeSpeed, rollout_contact_lift(*task),
+                    rollout_servo_coast(*task)};
+  teaching::Session session(task, options);
+  TeachOutcome o;
+  o.steps_not_run = run_session(cli, task->task, session, state.json);
+  o.strategy = session.strategy();
+  o.solved = session.solved() && o.strategy.has_value();
+  if (o.solved && !cli.out.empty()) {
+    o.written_name = free_strategy_name(task->task, cli.name);
+    std::ofstream out(cli.out);
+    out << taught_task_yaml(read_text(cli.task), session, *o.strategy, o.written_name);
+    if (!out) throw std::runtime_error("cannot write " + cli.out);
   }
-  state.exit_status = solved && !check_failed ? kExitSuccess : kExitFailureFound;
+  o.check = run_check(cli, task->task, session);
+  if (!cli.view.empty()) {
+    o.page = std::filesystem::path(cli.view) / "index.html";
+    report::write_view_assets(cli.view);
+    report::write_view_page(teach_view_data(session, task->task.name + " / teaching session"), o.page, ".");
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (state.json)
+    print_json(outcome_json(cli, session, options, o, seconds));
+  else
+    print_outcome(cli, session, o);
+  const bool check_failed = o.check && (o.check->failures > 0 || o.check->outside > 0);
+  state.exit_status = o.solved && !check_failed ? kExitSuccess : kExitFailureFound;
 }
 
 }  // namespace
