@@ -19,6 +19,7 @@ struct PlanCli {
   std::string task;
   bool states = false, list = false;
   int max_atoms = 0;
+  long long max_states = 1'000'000;
   std::optional<double> friction, eps_s, theta_f;
 };
 
@@ -46,15 +47,23 @@ void run_plan(const PlanCli& cli, CommandState& state) {
   const auto task = task_with_overrides(cli);
   const CSpace& c = task->cspace;
   const Uncertainty& u = task->task.uncertainty;
-  const planner::PrimitiveStates p = planner::primitive_states(c, u.eps_s, u.theta_f, cli.max_atoms);
+  const planner::PrimitiveStates p = planner::primitive_states(c, u.eps_s, u.theta_f, cli.max_atoms,
+                                                               static_cast<std::size_t>(cli.max_states));
   nlohmann::json by_size = nlohmann::json::object();
   for (std::size_t k = 1; k < p.by_size.size(); ++k) by_size[std::to_string(k)] = p.by_size[k];
-  nlohmann::json out = {{"task", task->task.name},    {"faces", c.faces().size()},
-                        {"edges", c.edges().size()},  {"vertices", c.vertices().size()},
-                        {"atoms", p.atoms},           {"friction", task->task.friction},
-                        {"eps_s", u.eps_s},           {"theta_f", u.theta_f},
-                        {"max_atoms", cli.max_atoms}, {"primitive_states", p.states.size()},
-                        {"by_size", by_size},         {"truncated", p.truncated}};
+  nlohmann::json out = {{"task", task->task.name},
+                        {"faces", c.faces().size()},
+                        {"edges", c.edges().size()},
+                        {"vertices", c.vertices().size()},
+                        {"atoms", p.atoms},
+                        {"friction", task->task.friction},
+                        {"eps_s", u.eps_s},
+                        {"theta_f", u.theta_f},
+                        {"max_atoms", cli.max_atoms},
+                        {"primitive_states", p.states.size()},
+                        {"by_size", by_size},
+                        {"truncated", p.truncated},
+                        {"max_states", cli.max_states}};
   if (cli.list) {
     nlohmann::json states = nlohmann::json::array();
     for (const std::vector<int>& s : p.states) {
@@ -88,6 +97,9 @@ void add_plan_command(CLI::App& app, CommandState& state) {
       "count the primitive states: sets of atoms no two of which sensing can tell apart (Sec 6.4.1)");
   cmd->add_option("--max-atoms", cli->max_atoms, "only states of at most K atoms (default 0: any number)")
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--max-states", cli->max_states,
+                  "stop after this many states (default 10^6); truncated: true says the counts are partial")
+      ->check(CLI::Range(1LL, 100'000'000LL));
   cmd->add_flag("--list", cli->list, "also list every state's atoms");
   cmd->add_option("--friction", cli->friction, "use this friction coefficient instead of the task's");
   cmd->add_option("--eps-s", cli->eps_s, "use this position-sensing error instead of the task's");

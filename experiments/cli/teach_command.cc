@@ -61,7 +61,6 @@ std::string pieces_text(const LoadedTask& task, const std::string& motion,
 
 void print_step(std::ostream& os, const teaching::Session& session, const teaching::TeachStep& step,
                 std::size_t index) {
-  const double total = step.solved_measure + step.remaining_measure;
   os << "step " << index + 1 << ": " << step.motion << ", chain [";
   for (std::size_t i = 0; i < step.chain.size(); ++i) os << (i ? ", " : "") << step.chain[i];
   os << "]\n";
@@ -73,7 +72,7 @@ void print_step(std::ostream& os, const teaching::Session& session, const teachi
     os << "  the start is solved\n";
   } else {
     os << "  remaining: " << step.remaining.size() << " cell(s), measure " << step.remaining_measure
-       << (total > 0 ? "" : "") << "\n  why: " << step.failure << "\n";
+       << "\n  why: " << step.failure << "\n";
     if (!step.blocking.empty())
       os << "  " << step.motion
          << (step.chain.size() == 1 ? " may stop outside the goal at: "
@@ -139,9 +138,10 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
     if (!(words >> word)) continue;
     if (word == "quit") break;
     if (word == "undo") {
-      if (session.undo()) transcript.pop_back();
-      os << (transcript.empty() ? "no steps\n"
-                                : "undone; " + std::to_string(transcript.size()) + " step(s)\n");
+      const bool undone = session.undo();
+      if (undone) transcript.pop_back();
+      os << (undone ? "undone; " + std::to_string(transcript.size()) + " step(s) left\n"
+                    : "no step to undo\n");
       continue;
     }
     if (word == "save") {
@@ -154,9 +154,9 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
       continue;
     }
     try {
-      SessionStep step = parse_line(line, session.task().task);
+      const SessionStep step = parse_line(line, session.task().task);
+      const teaching::TeachStep& taught = propose(session, step);  // the step exists before it is numbered
       transcript.push_back(step);
-      const teaching::TeachStep& taught = propose(session, step);  // before steps().size() is read
       print_step(os, session, taught, session.steps().size() - 1);
     } catch (const TaskError& e) {
       os << e.reason() << " (" << e.key() << ")\n";

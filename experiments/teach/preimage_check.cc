@@ -23,7 +23,10 @@ PreimageCheck check_preimages(const std::string& task_yaml, const teaching::Sess
                          (cell.path.empty() ? std::string("_start") : "_" + cell.path) + ".yaml");
       c.task_file = file.string();
       const std::string text = cell_task_yaml(task_yaml, session, cell.chain, c.strategy, cell.region);
-      std::ofstream(file) << text;
+      std::ofstream cell_file(file);
+      cell_file << text;
+      cell_file.close();
+      if (!cell_file) throw std::runtime_error("cannot write " + file.string() + " (--check-dir)");
       ValidateOptions v;
       v.n = options.n;
       v.seed = options.seed;

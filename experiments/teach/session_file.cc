@@ -46,6 +46,8 @@ SessionStep parse_step(const YamlNode& item, const Task& task) {
     if (m.name.empty()) item.at("name").fail("the name is empty");
     if (task.find_motion(m.name))
       item.at("name").fail("the task already has a motion named '" + m.name + "'");
+    if (m.name.rfind("taught_", 0) == 0)
+      item.at("name").fail("names taught_... are kept for the inline motions without a name");
   }
   if (item.has("spring")) {
     m.kind = Motion::Kind::kSpring;

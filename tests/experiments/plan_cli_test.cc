@@ -26,6 +26,10 @@ TEST(CmtPlan, CubeStatesAreTable63sRow) {
       nlohmann::json::parse(run("plan " + task("cube") + " --states --max-atoms 1 --list --json").out);
   ASSERT_EQ(listed["states"].size(), 26u);
   EXPECT_EQ(listed["states"][0].size(), 1u);
+  const auto capped =
+      nlohmann::json::parse(run("plan " + task("cube") + " --states --max-states 10 --json").out);
+  EXPECT_TRUE(capped["truncated"].get<bool>());
+  EXPECT_EQ(capped["primitive_states"], 10);
 }
 
 TEST(CmtPlan, HoleWithTable63sErrorsHasTheThesissAtomCounts) {

@@ -30,6 +30,7 @@ TEST(CmtTeach, BadSessionFilesExitTwoNamingFileKeyAndReason) {
       {"steps: [{damper: [0, 0, 0]}]\n", "steps[0].damper", "zero"},
       {"steps: [{spring: [0, 0, 1], damper: [0, 0, 1]}]\n", "steps[0]", "exactly one of spring, damper"},
       {"steps: [{spring: [0, 0, 1], name: lift}]\n", "steps[0].name", "already has a motion named 'lift'"},
+      {"steps: [{spring: [0, 0, 1], name: taught_1}]\n", "steps[0].name", "kept for the inline motions"},
       {"steps: []\n", "steps", "empty"},
       {"moves: [lift]\n", "", "moves"},
   };

@@ -51,7 +51,12 @@ const TeachStep& Session::propose(const std::string& motion_name) {
                     "no motion named '" + motion_name + "' (the task has " +
                         std::to_string(task_->task.motions.size()) + ")");
   step_added_motion_.push_back(false);
-  return run_step(motion_name);
+  try {
+    return run_step(motion_name);
+  } catch (...) {
+    step_added_motion_.pop_back();
+    throw;
+  }
 }
 
 const TeachStep& Session::propose(Motion motion) {
@@ -59,10 +64,18 @@ const TeachStep& Session::propose(Motion motion) {
   while (task_->task.find_motion(motion.name)) motion.name += "_";
   auto copy = std::make_shared<LoadedTask>(*task_);
   copy->task.motions.push_back(motion);
+  const std::shared_ptr<const LoadedTask> before = task_;
   task_ = std::move(copy);
   inline_motions_.push_back(motion);
   step_added_motion_.push_back(true);
-  return run_step(motion.name);
+  try {
+    return run_step(motion.name);
+  } catch (...) {  // the session stays as it was (e.g. a cell the loader's region check refuses)
+    step_added_motion_.pop_back();
+    inline_motions_.pop_back();
+    task_ = before;
+    throw;
+  }
 }
 
 bool Session::undo() {
@@ -100,7 +113,7 @@ const Session::FirstMotion& Session::first_motion(const std::string& motion, con
 // simulation is computed once per cell and each chain continues from its termination set.
 bool Session::chain_reliable(const std::vector<std::string>& chain, const StartCell& cell, TeachStep& step) {
   const FirstMotion& first = first_motion(chain.front(), cell, step);
-  if (!first.terminates) return false;
+  if (!first.motion_ok) return false;
   if (chain.size() == 1) {
     const ReachedSet goal = ReachedSet::from_regions(*task_, task_->task.goal);
     return first.termination.pieces_outside(goal, kGoalRelativeTolerance * task_->cspace.scale()).empty();
@@ -152,7 +165,7 @@ void Session::explain(const std::vector<std::string>& motions, TeachStep& step) 
   ReachedSet termination(task_->cspace);
   const auto cached =
       step.remaining.size() == 1 ? first_motions_.find(step.remaining.front().path) : first_motions_.end();
-  if (cached != first_motions_.end() && cached->second.terminates) {
+  if (cached != first_motions_.end() && cached->second.motion_ok) {
     // One unsolved cell whose first motion was simulated: the chain's failure is the rest's from its stops.
     termination = cached->second.termination;
     if (motions.size() == 1) {
@@ -216,8 +229,7 @@ const TeachStep& Session::run_step(const std::string& motion_name) {
   first_motions_.clear();
   const std::vector<std::vector<std::string>> chains = candidates(motion_name);
   std::vector<StartCell> cells = merged(remaining());
-  double best = 0;
-  step.chain = chains.front();
+  std::vector<double> solved_by(chains.size(), 0.0);  // measure each candidate solved, over both passes
   // First every chain on the unsolved cells as they are, then the refinement (halvings are the costly part).
   for (std::size_t pass = 0; pass < 2 * chains.size() && !cells.empty(); ++pass) {
     const std::vector<std::string>& chain = chains[pass % chains.size()];
@@ -226,13 +238,21 @@ const TeachStep& Session::run_step(const std::string& motion_name) {
     const std::size_t before = step.solved.size();
     for (const StartCell& cell : cells)
       refine(chain, cell, halve ? options_.refine_depth : cell.depth(), step, unsolved);
-    double solved = 0;
-    for (std::size_t i = before; i < step.solved.size(); ++i) solved += region_measure(step.solved[i].region);
-    if (step.solved.size() > before && (best == 0 || solved > best)) {
-      best = solved;
-      step.chain = chain;
-    }
+    for (std::size_t i = before; i < step.solved.size(); ++i)
+      solved_by[pass % chains.size()] += region_measure(step.solved[i].region);
     cells = merged(unsolved);
+  }
+  // C_k: the candidate that solved the most (the first on ties; a point start measures 0, so any solved cell
+  // counts), else [m_k] ++ C_{k-1}.
+  step.chain = chains.front();
+  double best = -1;
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    const bool solved_some = std::any_of(step.solved.begin(), step.solved.end(),
+                                         [&](const StartCell& cell) { return cell.chain == chains[c]; });
+    if (solved_some && solved_by[c] > best) {
+      best = solved_by[c];
+      step.chain = chains[c];
+    }
   }
   step.remaining = std::move(cells);
   step.solved_measure = measure(step.solved);

@@ -99,8 +99,8 @@ class Session {
   VerifyResult verify_from(const Strategy& chain, const ReachedSet& start, TeachStep& step) const;
   // The proposed motion's simulation from a cell, shared by the chains a step tries on it.
   struct FirstMotion {
-    bool terminates = false;  // no failure of the motion itself (verify.cc: may not terminate, may slide
-                              // forever, may rest in free space)
+    bool motion_ok = false;  // no failure of the motion itself (verify.cc: may not terminate, may slide
+                             // forever, may rest in free space)
     ReachedSet termination;
   };
   const FirstMotion& first_motion(const std::string& motion, const StartCell& cell, TeachStep& step);
