@@ -1,8 +1,9 @@
 // One teaching step (verifier/teaching) against the forward projection it is built on, in the same run: the
-// hole session of Buckley §5.2 (docs/teaching.md). Baseline BM_VerifyHoleP1: `verify` of p1 alone from the
-// hole's start (one forward projection). BM_TeachHoleP1: the session's step 1 (p1 solves nothing: every
-// halving of the start is tried, 9 verifications). BM_TeachHoleP2: step 2 after step 1 (one verification of
-// (p2, p1) from the merged start). The options are `cmt teach`'s except contact lift and servo coast (0).
+// hole teaching session of Buckley §5.2 (docs/teaching.md). Baseline BM_VerifyHoleP1: `verify` of p1 alone
+// from the hole's start (one forward projection). BM_TeachHoleP1: the teaching session's step 1 (p1 solves
+// nothing: every halving of the start is tried, 9 verifications). BM_TeachHoleP2: step 2 after step 1 (one
+// verification of (p2, p1) from the merged start). The options are `cmt teach`'s except contact lift and
+// servo coast (0).
 #include <benchmark/benchmark.h>
 
 #include <memory>

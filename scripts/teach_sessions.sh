@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The built-in teaching sessions of the main job (docs/teaching.md), each `cmt teach --json` result written to
 # DIR/<session>.json (the report's Teaching sessions section) and each taught task to DIR/<session>.yaml; the
-# solved sessions' pre-images are checked by MuJoCo rollouts from their solved cells (extreme mode, seed 1).
+# solved teaching sessions' pre-images are checked by MuJoCo rollouts from their solved cells (extreme mode, seed 1).
 # Exit status 1 from cmt teach (not solved, or a check failure) is recorded in the JSON; 2 (bad input) stops.
 set -euo pipefail
 cd "$(dirname "$0")/.."

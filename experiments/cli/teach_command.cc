@@ -106,7 +106,7 @@ const teaching::TeachStep& propose(teaching::Session& session, const SessionStep
   return step.inline_motion ? session.propose(*step.inline_motion) : session.propose(step.motion);
 }
 
-// One line of the interactive mode as a session step; throws TaskError on a bad line.
+// One line of the interactive mode as a teaching step; throws TaskError on a bad line.
 SessionStep parse_line(const std::string& line, const Task& task) {
   std::istringstream in(line);
   std::string word;
@@ -128,7 +128,7 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
   const Task& task = session.task().task;
   if (terminal)
     os << "Propose motions, the strategy's last motion first: a motion name, spring x y z, damper x y z;\n"
-          "undo, save FILE (the session so far), quit.\n";
+          "undo, save FILE (the teaching session so far), quit.\n";
   std::string line;
   while (!session.solved()) {
     if (terminal) os << "teach> " << std::flush;
@@ -164,8 +164,8 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
   }
 }
 
-// Proposes the session file's steps (until the start is solved), or reads them from stdin. Returns how many
-// of the file's steps were not run.
+// Proposes the teaching session file's steps (until the start is solved), or reads them from stdin. Returns
+// how many of the file's steps were not run.
 std::size_t run_session(const TeachCli& cli, const Task& task, teaching::Session& session, bool json) {
   if (cli.session.empty()) {
     std::vector<SessionStep> transcript;
@@ -180,8 +180,8 @@ std::size_t run_session(const TeachCli& cli, const Task& task, teaching::Session
   }
   const std::size_t not_run = steps.size() - session.steps().size();
   if (!json && not_run > 0)
-    std::cout << "the start was solved after step " << session.steps().size() << "; the session's last "
-              << not_run << " step(s) were not run\n";
+    std::cout << "the start was solved after step " << session.steps().size()
+              << "; the teaching session's last " << not_run << " step(s) were not run\n";
   return not_run;
 }
 
@@ -288,9 +288,10 @@ void add_teach_command(CLI::App& app, CommandState& state) {
   auto* cmd =
       app.add_subcommand("teach", "Teach a strategy by proposing motions, the last first (Buckley ch. 5)");
   cmd->add_option("TASK", cli->task, "task YAML file")->required();
-  cmd->add_option("--session", cli->session,
-                  "session YAML file (steps: motion names or {spring: [x, y, z]} / {damper: [x, y, z]}); "
-                  "without it, motions are read from stdin");
+  cmd->add_option(
+      "--session", cli->session,
+      "teaching session YAML file (steps: motion names or {spring: [x, y, z]} / {damper: [x, y, z]}); "
+      "without it, motions are read from stdin");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->add_option("-o,--output", cli->out, "write the task with the taught strategy added");
   cmd->add_option("--name", cli->name, "name of the taught strategy in the written task (default taught)")
@@ -325,7 +326,7 @@ void add_teach_command(CLI::App& app, CommandState& state) {
                   "under the system's temporary directory)");
   cmd->add_option(
       "--view", cli->view,
-      "write a 3-D page of the session to DIR/index.html: per step the solved and remaining start "
+      "write a 3-D page of the teaching session to DIR/index.html: per step the solved and remaining start "
       "cells, where the motion may stop, and the stops to avoid (docs/teaching.md)");
   cmd->callback([cli, &state] { run_teach(*cli, state); });
 }

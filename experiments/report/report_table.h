@@ -118,7 +118,7 @@ Table falsify_table(const std::vector<ConfigSection>& sections);
 struct TeachingRun {
   std::string label;
   nlohmann::json result;
-  std::string view_link;  // the session's 3-D page relative to the report, "" without one
+  std::string view_link;  // the teaching session's 3-D page relative to the report, "" without one
 };
 Table teaching_table(const std::vector<TeachingRun>& runs);
 // The configuration's note on its search ("" without one): rollouts, ends outside, the farthest one's

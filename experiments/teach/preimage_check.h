@@ -1,8 +1,8 @@
 // The teaching system's pre-images checked by physics (docs/teaching.md "Pre-image check"): for every solved
-// cell of a session, MuJoCo rollouts of the chain that solved it, started at points sampled in the cell
-// (its vertices and edges included: experiments/validation), must all reach the goal. Each cell becomes a
-// task file of its own (the task, the session's inline motions, the chain as a strategy, the cell as the
-// start), so every failure replays with `cmt rollout`.
+// cell of a teaching session, MuJoCo rollouts of the chain that solved it, started at points sampled in the
+// cell (its vertices and edges included: experiments/validation), must all reach the goal. Each cell becomes
+// a task file of its own (the task, the teaching session's inline motions, the chain as a strategy, the cell
+// as the start), so every failure replays with `cmt rollout`.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct PreimageCheckOptions {
 };
 
 struct CellCheck {
-  int step = 0;      // 0-based session step
+  int step = 0;      // 0-based teaching step
   std::string cell;  // the cell's path in the halving tree ("" the whole start)
   std::string task_file, strategy;
   int rollouts = 0, successes = 0, unstable = 0, outside = 0;

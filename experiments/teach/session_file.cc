@@ -88,7 +88,7 @@ std::vector<SessionStep> parse_session(const std::string& yaml_text, const std::
 
 std::vector<SessionStep> load_session(const std::filesystem::path& path, const Task& task) {
   std::ifstream in(path);
-  if (!in) throw TaskError(path.string(), "", "cannot open the session file");
+  if (!in) throw TaskError(path.string(), "", "cannot open the teaching session file");
   std::stringstream text;
   text << in.rdbuf();
   return parse_session(text.str(), path.string(), task);

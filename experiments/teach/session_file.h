@@ -23,7 +23,7 @@ std::vector<SessionStep> parse_session(const std::string& yaml_text, const std::
                                        const Task& task);
 std::vector<SessionStep> load_session(const std::filesystem::path& path, const Task& task);
 
-// One step as the session file spells it (the interactive mode's transcript).
+// One step as the teaching session file spells it (the interactive mode's transcript).
 std::string session_step_yaml(const SessionStep& step, int dimension);
 
 }  // namespace cmt

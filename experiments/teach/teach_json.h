@@ -16,7 +16,8 @@ nlohmann::json teach_json(const teaching::Session& session, double seconds);
 // A name for the taught strategy that the task does not use yet: `wanted`, else wanted_2, wanted_3, ...
 std::string free_strategy_name(const Task& task, const std::string& wanted);
 
-// The task file text with the session's inline motions and the taught strategy (named `strategy_name`) added.
+// The task file text with the teaching session's inline motions and the taught strategy (named
+// `strategy_name`) added.
 std::string taught_task_yaml(const std::string& task_yaml, const teaching::Session& session,
                              const std::vector<std::string>& strategy, const std::string& strategy_name);
 // The same with the start replaced by `start` (a solved cell, for the pre-image check).

@@ -1,4 +1,4 @@
-// The teaching session loop (teaching_session.h).
+// The teaching loop (teaching_session.h).
 #include "verifier/teaching/teaching_session.h"
 
 #include <algorithm>
@@ -70,7 +70,7 @@ const TeachStep& Session::propose(Motion motion) {
   step_added_motion_.push_back(true);
   try {
     return run_step(motion.name);
-  } catch (...) {  // the session stays as it was (e.g. a cell the loader's region check refuses)
+  } catch (...) {  // the teaching session stays as it was (e.g. a cell the loader's region check refuses)
     step_added_motion_.pop_back();
     inline_motions_.pop_back();
     task_ = before;

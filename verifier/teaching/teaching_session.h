@@ -1,4 +1,4 @@
-// The teaching system's session loop (Buckley §5.1; verifier/teaching/README.md). The teacher proposes
+// The teaching system's teaching loop (Buckley §5.1; verifier/teaching/README.md). The teacher proposes
 // commanded motions, the strategy's last motion first. Each motion m_k gets a pre-image: the start cells
 // from which m_k followed by the chain of an earlier step (C_{k-1} first, then C_{k-2}, ..., then m_k alone)
 // is verified reliable by the forward projection (verify.h). Step k's chain C_k is the candidate that solved
@@ -71,8 +71,8 @@ class Session {
   Session(std::shared_ptr<const LoadedTask> task, TeachOptions options);
 
   // Proposes a motion of the task by name (TaskError when unknown), or an inline motion; an inline motion
-  // without a name is named taught_<k> for step k (1-based), and the task copy this session verifies gains
-  // it.
+  // without a name is named taught_<k> for step k (1-based), and the task copy this teaching session verifies
+  // gains it.
   const TeachStep& propose(const std::string& motion_name);
   const TeachStep& propose(Motion motion);
   // Removes the last step (and an inline motion it added). False when there is no step.
