@@ -54,11 +54,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
 class StrategyVerifier {
  public:
   StrategyVerifier(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options)
-      : lt_(lt),
-        strategy_(strategy),
-        options_(options),
-        cones_(lt.cspace),
-        goal_(ReachedSet::from_regions(lt, lt.task.goal)) {
+      : lt_(lt), strategy_(strategy), options_(options), cones_(lt.cspace) {
     out_.node_step.assign(strategy.nodes.size(), -1);
     out_.spring_model = options.spring_model;
     out_.stop_relative_speed = options.stop_relative_speed;
@@ -86,8 +82,7 @@ class StrategyVerifier {
 
   // A final set (the last motion of a path, or a branch that stops) must lie in the goal.
   void check_goal(int step, const ReachedSet& final_set, const std::string& what) {
-    std::vector<ReachedPiece> outside =
-        final_set.pieces_outside(goal_, kGoalRelativeTolerance * lt_.cspace.scale());
+    std::vector<ReachedPiece> outside = pieces_outside_goal(lt_, final_set);
     if (!outside.empty()) fail(step, what + " is not inside the goal", std::move(outside));
   }
 
@@ -169,11 +164,15 @@ class StrategyVerifier {
   const Strategy& strategy_;
   const VerifyOptions options_;
   const AtomCones cones_;
-  const ReachedSet goal_;
   VerifyResult out_;
 };
 
 }  // namespace
+
+std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& lt, const ReachedSet& final_set) {
+  return final_set.pieces_outside(ReachedSet::from_regions(lt, lt.task.goal),
+                                  kGoalRelativeTolerance * lt.cspace.scale());
+}
 
 VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names,
                             const VerifyOptions& options) {

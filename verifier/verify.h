@@ -118,6 +118,10 @@ struct VerifyOptions {
   double servo_coast = 0;
 };
 
+// The pieces of `final_set` outside the task's goal (within kGoalRelativeTolerance for 1-D and 0-D pieces):
+// the goal containment every final termination set must pass.
+std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& task, const ReachedSet& final_set);
+
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.
 VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions,
                             const VerifyOptions& options = {});

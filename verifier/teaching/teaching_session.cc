@@ -114,10 +114,7 @@ const Session::FirstMotion& Session::first_motion(const std::string& motion, con
 bool Session::chain_reliable(const std::vector<std::string>& chain, const StartCell& cell, TeachStep& step) {
   const FirstMotion& first = first_motion(chain.front(), cell, step);
   if (!first.motion_ok) return false;
-  if (chain.size() == 1) {
-    const ReachedSet goal = ReachedSet::from_regions(*task_, task_->task.goal);
-    return first.termination.pieces_outside(goal, kGoalRelativeTolerance * task_->cspace.scale()).empty();
-  }
+  if (chain.size() == 1) return pieces_outside_goal(*task_, first.termination).empty();
   const std::vector<std::string> rest(chain.begin() + 1, chain.end());
   return verify_from(chain_strategy(rest), first.termination, step).reliable;
 }
@@ -169,9 +166,8 @@ void Session::explain(const std::vector<std::string>& motions, TeachStep& step) 
     // One unsolved cell whose first motion was simulated: the chain's failure is the rest's from its stops.
     termination = cached->second.termination;
     if (motions.size() == 1) {
-      const ReachedSet goal = ReachedSet::from_regions(*task_, task_->task.goal);
       step.failure = "termination of motion '" + motions.front() + "' is not inside the goal";
-      step.blocking = termination.pieces_outside(goal, kGoalRelativeTolerance * task_->cspace.scale());
+      step.blocking = pieces_outside_goal(*task_, termination);
     } else {
       step.failure = verify_from(rest, termination, step).failure;
     }
