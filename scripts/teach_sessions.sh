@@ -2,6 +2,7 @@
 # The built-in teaching sessions of the main job (docs/teaching.md), each `cmt teach --json` result written to
 # DIR/<session>.json (the report's Teaching sessions section) and each taught task to DIR/<session>.yaml; the
 # solved teaching sessions' pre-images are checked by MuJoCo rollouts from their solved cells (extreme mode, seed 1).
+# Then a damper chain's strong backprojection (`cmt backproject`), checked the same way from points of it.
 # Exit status 1 from cmt teach (not solved, or a check failure) is recorded in the JSON; 2 (bad input) stops.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,3 +25,12 @@ teach hole_teach hole --check 1000                # Buckley §5.2: (p2, p1)
 teach hole_too_deep hole --depth 1                # p2 too deep: not solved, names the top face
 teach tslot_teach tslot --depth 1 --check 300     # beyond the thesis: (m1, m2)
 teach peg_in_hole_real_teach peg_in_hole_real --check 300  # §6.3.4's scaled hole: (p2, p1)
+# Buckley Alg 5.2 for dampers: two_blocks' (v3, v2) backprojected from the goal, rollouts from 10 points of S.
+status=0
+build/bin/cmt backproject models/tasks/two_blocks.yaml --motions v3,v2 --check 10 --points 10 --seed 1 \
+  --threads 2 --check-dir "$dir/two_blocks_backproject_points" --json >"$dir/two_blocks_backproject.json" || status=$?
+if [ "$status" -gt 1 ]; then
+  echo "cmt backproject failed with status $status" >&2
+  exit "$status"
+fi
+echo "backproject two_blocks (v3, v2): exit $status" >&2

@@ -96,6 +96,9 @@ EdgeSliding edge_sliding(const CSpace& cspace, int edge_atom_id, const Vec3& v, 
   EdgeSliding out;
   if (classify_damper(cspace, edge_atom_id, v, theta_v) == StickClass::kMust) return out;
   const Edge& e = cspace.edges()[cspace.atom_index(edge_atom_id)];
+  if (e.shape == EdgeShape::kConcave)
+    for (int f : e.faces)
+      if (v.normalized().dot(cspace.faces()[f].normal) > std::sin(theta_v + kSlidingConeSlack)) return out;
   const Vec3 dir = (e.b - e.a).normalized();
   // Some v_a within theta_v of v has a positive component along dir iff angle(v, dir) < pi/2 + theta_v.
   const double to_b = angle_between(v, dir);

@@ -43,7 +43,10 @@ inline constexpr double kSlidingConeSlack = 1e-9;  // radians
 SlidingCone sliding_cone(const Vec3& normal, double mu, const Vec3& v, double theta_v);
 
 // Sliding along an edge (direction e = b − a): may the robot move toward b, toward a? Over-approximation: a
-// direction is possible when some admissible velocity has a component along it and the robot need not stick.
+// direction is possible when some admissible velocity has a component along it and the robot need not stick;
+// at a concave edge also only when some admissible velocity presses into each face (v . n <= sin theta_v):
+// a velocity that leaves one face moves the robot onto the other face's plane, which that face's sliding
+// covers (the forward projection seeds both faces from every reached edge point).
 struct EdgeSliding {
   bool toward_a = false;
   bool toward_b = false;

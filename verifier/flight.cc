@@ -229,6 +229,17 @@ FlightCone flight_cone(const Vec3& v_in, double theta_v, double scale) {
   return cone;
 }
 
+namespace {
+// x lies strictly inside the concave edge between the source face and wall face h.
+bool on_wall_edge(const FlightSource& source, int h, const Point3& x) {
+  for (const FlightSource::Wall& w : source.walls) {
+    if (w.face != h || !CGAL::collinear(w.a, w.b, x)) continue;
+    if ((x - w.a) * (w.b - w.a) > 0 && (x - w.b) * (w.a - w.b) > 0) return true;
+  }
+  return false;
+}
+}  // namespace
+
 std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source, const FlightCone& cone) {
   const CSpace& c = *g.cspace;
   const double margin = kUmbraRelativeMargin * c.scale();
@@ -281,16 +292,25 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
       if (hi == gi || !face_box[hi].meets(corridor, pad)) continue;
       const FaceChart& hc = g.charts[hi];
       if (same_plane(hc.plane, chart.plane)) continue;
-      bool all_front = true;
-      for (const Point3& x : source.vertices) all_front = all_front && hc.plane.has_on_positive_side(x);
-      if (!all_front) continue;  // Shadow_x(h) is empty for x in h's plane; skip h otherwise too (sound)
+      // Shadow_x(h) is empty for x in h's plane, except on a wall's concave edge (FlightSource::walls), where
+      // it is all of h's back; skip h otherwise (sound).
+      std::vector<const Point3*> front;
+      bool occludes = true;
+      for (const Point3& x : source.vertices) {
+        if (hc.plane.has_on_positive_side(x))
+          front.push_back(&x);
+        else
+          occludes = occludes && on_wall_edge(source, static_cast<int>(hi), x);
+      }
+      if (!occludes) continue;
       const auto& poly = c.faces()[hi].polygon;
       std::vector<Point3> corners;
       for (const Vec3& p : poly) corners.push_back(exact(p));
       const Point3 inside = CGAL::centroid(corners[0], corners[1], corners[2]);
       Points2 umbra = section;
       umbra = clip(umbra, shrunk(restrict_to_chart(hc.plane.opposite(), chart), margin));  // beyond h
-      for (const Point3& x : source.vertices) {
+      for (const Point3* xp : front) {
+        const Point3& x = *xp;
         for (std::size_t k = 0; k < corners.size() && umbra.size() >= 3; ++k) {
           Plane3 side(x, corners[k], corners[(k + 1) % corners.size()]);
           if (side.oriented_side(inside) == CGAL::ON_NEGATIVE_SIDE) side = side.opposite();

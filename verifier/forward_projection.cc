@@ -11,15 +11,15 @@
 #include <numbers>
 
 #include "verifier/damper.h"
-#include "verifier/internal/fixpoint.h"
+#include "verifier/internal/face_sweep.h"
 #include "verifier/internal/flight.h"
+#include "verifier/internal/worklist.h"
 #include "verifier/slide_forever.h"
 
 namespace cmt {
 namespace {
 
 using namespace fp;
-constexpr double kPi = std::numbers::pi;
 // Contact-lift strips seeded over an edge's reached intervals before the strip along the whole edge is taken.
 constexpr int kLiftStripRounds = 8;
 // Landing coasts that grew one face before its whole polygon is taken (coast_after_landing); rim coast
@@ -27,49 +27,6 @@ constexpr int kLiftStripRounds = 8;
 constexpr int kCoastRounds = 24;
 // Relative slack on the servo coast's length (covers rounding of the sector's double corners).
 constexpr double kCoastRelativeSlack = 1e-9;
-
-// Step A's in-plane sweep on one face: none, the whole face, or the wedge W of directions b_minus..b_plus.
-struct Sweep {
-  bool none = true, whole = false;
-  Vec3 b_plus, b_minus;
-  double far = 0;
-};
-
-// Buckley Alg 4.3 (via sliding_cone, damper.h) plus tangential flight: velocities tangent to the face (|v.n|
-// <= sin theta_v) move the robot within the plane; such displacements lie in the wedge of half-angle
-// acos(cos theta_v / |v_t|) about v_t, symmetric about the same axis as the sliding cone, so the larger
-// half-angle covers both (and any mix: W is a convex cone).
-Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
-  Sweep out;
-  const SlidingCone s = sliding_cone(f.normal, f.friction, v, theta_v);
-  const Vec3 vt = v - v.dot(f.normal) * f.normal;
-  const double vt_norm = vt.norm();
-  double alpha = -1;
-  Vec3 axis = s.axis;
-  if (s.possible) {
-    if (s.all) alpha = kPi;
-    alpha = std::max(alpha, s.half_angle);
-  }
-  if (vt_norm >= std::cos(theta_v + kFlightAngleSlack) && vt_norm > 0) {
-    alpha = std::max(alpha, std::acos(std::min(1.0, std::cos(theta_v + kFlightAngleSlack) / vt_norm)));
-    axis = vt / vt_norm;
-  }
-  if (alpha < 0) return out;
-  out.none = false;
-  alpha += kFlightAngleSlack;
-  // Half-angle >= pi/2: the directions positively span the plane and the velocity may switch: whole face.
-  if (alpha >= kPi / 2 || std::cos(alpha) < 1e-9 || axis.norm() == 0) {
-    out.whole = true;
-    return out;
-  }
-  const Vec3 side = f.normal.cross(axis);
-  out.b_plus = std::cos(alpha) * axis + std::sin(alpha) * side;
-  out.b_minus = std::cos(alpha) * axis - std::sin(alpha) * side;
-  // Any in-face displacement (length <= scale) in W is a combination of b_plus, b_minus with coefficients
-  // summing to <= scale / cos(alpha).
-  out.far = 2 * scale / std::cos(alpha) + 1;
-  return out;
-}
 
 class Projector {
  public:
@@ -82,7 +39,8 @@ class Projector {
         kappa_(std::max(0.0, stop_relative_speed)),
         theta_v_(lt.task.uncertainty.theta_v),
         reached_(start),
-        r_(reached_.impl()) {
+        r_(reached_.impl()),
+        work_(r_) {  // everything in the start is pending
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
@@ -103,30 +61,12 @@ class Projector {
       whole_face_.emplace_back(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
       sweep_holds_cone_.push_back(cls_[fi] != StickClass::kMust && sweep_holds_cone(fi));
     }
-    pend_region_.resize(nf_);
-    pend_seg_.resize(nf_);
-    pend_pt_.resize(nf_);
-    pend_edge_.resize(ne_);
-    pend_vertex_.assign(nv_, 0);
-    // Everything in the start is pending.
-    for (int fi = 0; fi < nf_; ++fi) {
-      pend_region_[fi] = r_.faces[fi].region;
-      for (const Segment2& s : r_.faces[fi].segments) pend_seg_[fi].push_back({s.source(), s.target()});
-      for (const Point2& p : r_.faces[fi].points) pend_pt_[fi].push_back({p});
-    }
-    for (int ei = 0; ei < ne_; ++ei) pend_edge_[ei] = r_.edges[ei];
-    for (int vi = 0; vi < nv_; ++vi) pend_vertex_[vi] = r_.vertices[vi];
   }
 
   DamperProjection run() {
     DamperProjection out{ReachedSet(c_), ReachedSet(c_)};
-    const bool progress = sweep_until_stable(
-        nf_, ne_, nv_, steps_, kMaxFixpointSteps,
-        [&](int fi) {
-          return !pend_region_[fi].is_empty() || !pend_seg_[fi].empty() || !pend_pt_[fi].empty();
-        },
-        [&](int fi) { process_face(fi); }, [&](int ei) { return !pend_edge_[ei].empty(); },
-        [&](int ei) { process_edge(ei); }, [&](int vi) { return pend_vertex_[vi] != 0; },
+    const bool progress = work_.run(
+        steps_, kMaxFixpointSteps, [&](int fi) { process_face(fi); }, [&](int ei) { process_edge(ei); },
         [&](int vi) { process_vertex(vi); });
     if (progress) {  // cap reached: every atom (sound, uninformative)
       out.fallback = true;
@@ -143,73 +83,19 @@ class Projector {
   }
 
  private:
-  // ---- adding (only what is new becomes pending) ----
-  // Each returns whether something new became pending.
-  bool add_region(int fi, const ChartRegion& part) {
-    ChartRegion added;
-    if (!r_.add_region(fi, part, &added)) return false;
-    pend_region_[fi].join(added);
-    return true;
-  }
-  bool add_convex(int fi, const Points2& pts) {
-    if (pts.size() >= 3) return add_region(fi, ChartRegion(to_polygon(pts), r_.charts[fi].cell));
-    if (pts.size() == 2) return add_segment(fi, pts[0], pts[1]);
-    if (pts.size() == 1) return add_point(fi, pts[0]);
-    return false;
-  }
-  bool add_segment(int fi, const Point2& a, const Point2& b) {
-    if (!r_.add_segment(fi, a, b)) return false;
-    pend_seg_[fi].push_back({a, b});
-    return true;
-  }
-  bool add_point(int fi, const Point2& p) {
-    if (!r_.add_point(fi, p)) return false;
-    pend_pt_[fi].push_back({p});
-    return true;
-  }
-  void add_interval(int ei, double t0, double t1) {
-    std::vector<EdgeInterval> added;
-    const double fresh = r_.add_interval(ei, t0, t1, &added);
-    if (fresh < 0) return;
-    // Growth below the parameter slack is rounding, not reach: stored, not propagated.
-    if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
-      for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
-  }
-  void add_vertex(int vi) {
-    if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
-  }
-
   // ---- processing ----
   void process_face(int fi) {
     ++steps_;
-    const ChartRegion region = std::move(pend_region_[fi]);
-    pend_region_[fi] = ChartRegion();
-    std::vector<Points2> parts = convex_pieces(region);
-    for (Points2& s : pend_seg_[fi]) parts.push_back(std::move(s));
-    for (Points2& p : pend_pt_[fi]) parts.push_back(std::move(p));
-    pend_seg_[fi].clear();
-    pend_pt_[fi].clear();
+    const std::vector<Points2> parts = work_.take_face(fi);
     const Face& face = c_.faces()[fi];
     const FaceChart& chart = r_.charts[fi];
-    // Reached parts of the face's edges and corners (closed regions include their boundary).
-    for (const Points2& part : parts) {
-      for (int e : face.edges) {
-        const Edge& edge = c_.edges()[e - nf_];
-        FT t0, t1;
-        if (clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1))
-          add_interval(e - nf_, CGAL::to_interval(t0).first - kEdgeParamSlack,
-                       CGAL::to_interval(t1).second + kEdgeParamSlack);
-      }
-      for (int vid : face.vertices)
-        if (inside_closed(part, chart.project(c_.vertices()[vid - nf_ - ne_].point)))
-          add_vertex(vid - nf_ - ne_);
-    }
+    work_.add_closure(fi, parts);  // reached parts of the face's edges and corners (closed regions)
     if (cls_[fi] == StickClass::kMust) return;  // nothing slides or lifts off a must-stick face
     if (coast_ > 0) coast_over_rims(fi, parts);
     // A. Sliding (Buckley Alg 4.3): the swept wedge, clipped to the face.
     const Sweep& sw = sweeps_[fi];
     if (sw.whole) {
-      add_region(fi, ChartRegion(to_polygon(r_.face_polygon[fi]), chart.cell));
+      work_.add_region(fi, ChartRegion(to_polygon(r_.face_polygon[fi]), chart.cell));
     } else if (!sw.none) {
       const Vector2 bp = chart.project_direction(sw.far * sw.b_plus);
       const Vector2 bm = chart.project_direction(sw.far * sw.b_minus);
@@ -219,7 +105,7 @@ class Projector {
           pts.push_back(p + bp);
           pts.push_back(p + bm);
         }
-        add_convex(fi, clip(convex_hull(pts), r_.face_polygon[fi]));
+        work_.add_convex(fi, clip(convex_hull(pts), r_.face_polygon[fi]));
       }
     }
     // D. Flight, when some admissible velocity leaves the face (angle(v, n) < pi/2 + theta_v); only points in
@@ -236,14 +122,10 @@ class Projector {
 
   void process_edge(int ei) {
     ++steps_;
-    std::vector<EdgeInterval> ivs = std::move(pend_edge_[ei]);
-    pend_edge_[ei].clear();
+    const std::vector<EdgeInterval> ivs = work_.take_edge(ei);
     const Edge& e = c_.edges()[ei];
     const int id = nf_ + ei;
-    for (const EdgeInterval& iv : ivs) {
-      if (iv.t0 <= kEdgeParamSlack && e.vertex_a >= 0) add_vertex(e.vertex_a - nf_ - ne_);
-      if (iv.t1 >= 1 - kEdgeParamSlack && e.vertex_b >= 0) add_vertex(e.vertex_b - nf_ - ne_);
-    }
+    work_.add_interval_ends(ei, ivs);
     // The lift bands first: the robot may reach them on its way to the edge, whatever the edge's class.
     if (lift_ > 0 && e.shape == EdgeShape::kConcave) add_lift_bands(ei, ivs);
     if (cls_[id] == StickClass::kMust) return;
@@ -252,8 +134,8 @@ class Projector {
     // seeds both faces below), so edge_sliding's coarser "any component along the edge" is not applied.
     const EdgeSliding es = e.shape == EdgeShape::kFlat ? EdgeSliding{} : edge_sliding(c_, id, v_, theta_v_);
     for (const EdgeInterval& iv : ivs) {
-      if (es.toward_b) add_interval(ei, iv.t0, 1);
-      if (es.toward_a) add_interval(ei, 0, iv.t1);
+      if (es.toward_b) work_.add_interval(ei, iv.t0, 1);
+      if (es.toward_a) work_.add_interval(ei, 0, iv.t1);
     }
     std::vector<Plane3> keep;
     if (e.shape == EdgeShape::kConcave || e.shape == EdgeShape::kFlat)
@@ -261,7 +143,7 @@ class Projector {
     for (const EdgeInterval& iv : ivs) {
       const Vec3 a = e.a + iv.t0 * (e.b - e.a), b = e.a + iv.t1 * (e.b - e.a);
       // Onto either adjacent face (over-approximation: the whole segment seeds both).
-      for (int f : e.faces) add_segment(f, r_.charts[f].project(a), r_.charts[f].project(b));
+      for (int f : e.faces) work_.add_segment(f, r_.charts[f].project(a), r_.charts[f].project(b));
       FlightSource src;
       src.vertices = {exact(a)};
       if (iv.t1 > iv.t0) src.vertices.push_back(exact(b));
@@ -303,7 +185,7 @@ class Projector {
         const Points2 rect =
             convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
                          chart.project(Vec3(a + lift_ * d))});
-        add_convex(f, clip(rect, r_.face_polygon[f]));
+        work_.add_convex(f, clip(rect, r_.face_polygon[f]));
       };
       if (whole) {
         strip(e.a, e.b);
@@ -338,16 +220,16 @@ class Projector {
 
   void process_vertex(int vi) {
     ++steps_;
-    pend_vertex_[vi] = 0;
+    work_.take_vertex(vi);
     const Vertex& vx = c_.vertices()[vi];
     if (cls_[nf_ + ne_ + vi] == StickClass::kMust) return;
     // C. Onto adjacent edges and faces, and flight.
     for (int e : vx.edges) {
       const Edge& edge = c_.edges()[e - nf_];
       const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
-      add_interval(e - nf_, t, t);
+      work_.add_interval(e - nf_, t, t);
     }
-    for (int f : vx.faces) add_point(f, r_.charts[f].project(vx.point));
+    for (int f : vx.faces) work_.add_point(f, r_.charts[f].project(vx.point));
     FlightSource src;
     src.vertices = {exact(vx.point)};
     absorb(fly(r_, src, cone_), vx.faces);
@@ -360,9 +242,9 @@ class Projector {
               const std::vector<Vec3>& departure = {}) {
     for (const FlightHit& h : hits) {
       if (!h.region.is_empty())
-        add_region(h.face, h.region);
+        work_.add_region(h.face, h.region);
       else
-        add_convex(h.face, h.lower);
+        work_.add_convex(h.face, h.lower);
       const bool adjacent = std::find(no_coast.begin(), no_coast.end(), h.face) != no_coast.end();
       const bool swept = sweeps_[h.face].whole || (departure.empty() && sweep_holds_cone_[h.face]);
       if (coast_ > 0 && !adjacent && !swept) coast_after_landing(h, departure);
@@ -381,7 +263,7 @@ class Projector {
   void coast_after_landing(const FlightHit& h, const std::vector<Vec3>& departure) {
     const FaceChart& chart = r_.charts[h.face];
     if (coast_rounds_[h.face] > kCoastRounds) {
-      add_region(h.face, whole_face_[h.face]);
+      work_.add_region(h.face, whole_face_[h.face]);
       return;
     }
     std::vector<Vec3> pattern = cone_coast_;
@@ -395,14 +277,14 @@ class Projector {
       }
       ChartRegion grown = h.region.minkowski_sum(chart_pattern);
       grown.intersection(whole_face_[h.face]);
-      grew = add_region(h.face, grown);
+      grew = work_.add_region(h.face, grown);
     } else {
       Points2 pts;
       for (const Point2& p : h.lower) {
         pts.push_back(p);
         for (const Vec3& d : pattern) pts.push_back(p + chart.project_direction(d));
       }
-      grew = add_convex(h.face, clip(convex_hull(pts), r_.face_polygon[h.face]));
+      grew = work_.add_convex(h.face, clip(convex_hull(pts), r_.face_polygon[h.face]));
     }
     if (grew) ++coast_rounds_[h.face];
   }
@@ -504,6 +386,7 @@ class Projector {
   double theta_v_;
   ReachedSet reached_;
   ReachedSet::Impl& r_;
+  DamperWorklist work_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
   std::vector<StickClass> cls_;
   std::vector<bool> stops_;  // the atom may stop the motion: it may stick or slide slower than the stop rule
@@ -520,10 +403,6 @@ class Projector {
   std::vector<Vec3> cone_coast_;  // coast_ along each cone ray: the coast of a landing at a cone velocity
   std::vector<ChartRegion> whole_face_;  // per face: its polygon as a region
   std::vector<bool> sweep_holds_cone_;   // per face: swept, and the sweep covers a landing's coast
-  std::vector<ChartRegion> pend_region_;
-  std::vector<std::vector<Points2>> pend_seg_, pend_pt_;
-  std::vector<std::vector<EdgeInterval>> pend_edge_;
-  std::vector<char> pend_vertex_;
   int steps_ = 0;
 };
 

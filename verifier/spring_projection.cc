@@ -20,6 +20,7 @@
 #include "verifier/internal/fixpoint.h"
 #include "verifier/internal/spring_flight.h"
 #include "verifier/internal/spring_velocity.h"
+#include "verifier/internal/worklist.h"
 #include "verifier/slide_forever.h"
 #include "verifier/spring.h"
 
@@ -463,25 +464,15 @@ class SpringProjector {
 
   // New reached parts: the edges and corners they touch, then one flight from the hull of what may leave.
   void process_new_parts(int fi) {
-    const Face& face = c_.faces()[fi];
     const FaceChart& chart = r_.charts[fi];
     ChartRegion fresh = std::move(pend_new_[fi]);
     pend_new_[fi] = ChartRegion();
     std::vector<Points2> news = convex_pieces(fresh);
     for (Points2& l : pend_new_lower_[fi]) news.push_back(std::move(l));
     pend_new_lower_[fi].clear();
-    for (const Points2& part : news) {
-      for (int e : face.edges) {
-        const Edge& edge = c_.edges()[e - nf_];
-        FT t0, t1;
-        if (clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1))
-          add_interval(e - nf_, CGAL::to_interval(t0).first - kEdgeParamSlack,
-                       CGAL::to_interval(t1).second + kEdgeParamSlack);
-      }
-      for (int vid : face.vertices)
-        if (inside_closed(part, chart.project(c_.vertices()[vid - nf_ - ne_].point)))
-          add_vertex(vid - nf_ - ne_);
-    }
+    add_boundary_closure(
+        r_, fi, news, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
+        [&](int vi) { add_vertex(vi); });
     fresh.difference(strong_[fi]);
     // Points inside the no-leave disk cannot leave the face: they do not fly.
     fresh.difference(no_leave_[fi]);

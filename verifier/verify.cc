@@ -1,6 +1,8 @@
 // Strategy verification (Buckley §4.2, Fig 4.2; Alg 4.1 / 4.4 per motion, §4.5 sensing termination).
 #include "verifier/verify.h"
 
+#include <algorithm>
+
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
 #include "verifier/forward_projection.h"
@@ -180,8 +182,27 @@ VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>
   return verify_strategy(lt, Strategy::sequence("", names), options);
 }
 
+ReachedSet start_set(const LoadedTask& lt, const VerifyOptions& options) {
+  ReachedSet start = ReachedSet::from_region(lt, lt.task.start);
+  if (options.contact_lift <= 0 || lt.task.start.kind != Region::Kind::kPoint) return start;
+  const CSpace& c = lt.cspace;
+  const Vec3& p = lt.task.start.points.front();
+  const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
+  for (int ei = 0; ei < ne; ++ei) {
+    const Edge& e = c.edges()[ei];
+    if (c.distance_to_atom(p, nf + ei) > options.contact_lift) continue;
+    const Vec3 d = e.b - e.a;
+    const double t = std::clamp((p - e.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    start.add_edge_interval(nf + ei, t, t);
+  }
+  for (std::size_t vi = 0; vi < c.vertices().size(); ++vi)
+    if ((c.vertices()[vi].point - p).norm() <= options.contact_lift)
+      start.add_vertex(nf + ne + static_cast<int>(vi));
+  return start;
+}
+
 VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options) {
-  return StrategyVerifier(lt, strategy, options).run(ReachedSet::from_region(lt, lt.task.start));
+  return StrategyVerifier(lt, strategy, options).run(start_set(lt, options));
 }
 
 VerifyResult verify_strategy_from(const LoadedTask& lt, const Strategy& strategy, const ReachedSet& start,

@@ -125,6 +125,11 @@ std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& task, const Reac
 // A decision-free sequence (Strategy::sequence); an unknown motion name is a TaskError.
 VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& motions,
                             const VerifyOptions& options = {});
+// The start set verify_strategy runs from: the task's start located on its atoms (ReachedSet::from_region);
+// with a contact lift, a point start also holds the nearest point of every edge and vertex within
+// contact_lift of it (docs/verifier.md "Starts near a rim"): the rollouts' contact, which lets the robot
+// sink and rise by about that much, cannot tell a robot that close to a rim or crease from one on it.
+ReachedSet start_set(const LoadedTask& task, const VerifyOptions& options);
 VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy,
                              const VerifyOptions& options = {});
 // The same from another start set (a part of the task's start, or any contact set): the teaching system's

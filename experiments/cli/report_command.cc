@@ -22,8 +22,9 @@ void add_report_command(CLI::App& app, CommandState& state) {
   cmd->add_option("DATABASE", options->database, "results database written by cmt sweep")->required();
   cmd->add_option("-o,--output", options->out_dir, "report directory (created if missing)")->required();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
-  cmd->add_option("--teach", options->teach,
-                  "`cmt teach --json` result files to show in a Teaching sessions section");
+  cmd->add_option(
+      "--teach", options->teach,
+      "`cmt teach --json` or `cmt backproject --json` result files to show in a Teaching sessions section");
   cmd->callback([options, &state] {
     const report::ReportSummary r = report::write_report(
         options->database, options->out_dir, verifier_stick_classes(), replay_counterexample,

@@ -199,8 +199,12 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
     std::ifstream in(f);
     if (!in) throw TaskError(f.string(), "", "cannot open the teaching result");
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("solved") || !j.contains("steps"))
-      throw TaskError(f.string(), "", "not a `cmt teach --json` result (an object with solved and steps)");
+    const bool teach = j.is_object() && j.contains("solved") && j.contains("steps");
+    const bool backproject = j.is_object() && j.contains("start_inside") && j.contains("steps");
+    if (j.is_discarded() || !(teach || backproject))
+      throw TaskError(f.string(), "",
+                      "not a `cmt teach --json` or `cmt backproject --json` result (an object with solved or "
+                      "start_inside, and steps)");
     std::string link;
     if (j.contains("view") && j["view"].is_string())
       link = std::filesystem::relative(std::filesystem::absolute(j["view"].get<std::string>()),

@@ -1,5 +1,5 @@
 // The report's "Teaching sessions" section (report_table.h teaching_table; docs/teaching.md "In the main
-// job"): one row per `cmt teach --json` object given to `cmt report --teach`.
+// job"): one row per `cmt teach --json` or `cmt backproject --json` object given to `cmt report --teach`.
 #include <sstream>
 
 #include "experiments/report/report_table.h"
@@ -27,19 +27,29 @@ std::string names(const json& list) {
   return "(" + out + ")";
 }
 
-// "p1: solved 0, left 2 (termination of motion 'p1' is not inside the goal); p2: solved 2, left 0".
-std::string steps_text(const json& steps) {
+// The steps' texts joined by "; " (numbers to 4 digits).
+template <class StepText>
+std::string steps_joined(const json& steps, StepText step_text) {
   if (!steps.is_array()) return "";
   std::ostringstream out;
   out.precision(4);
   for (const json& s : steps) {
     if (out.tellp() > 0) out << "; ";
     const json& motion = member(s, "motion");
-    out << (motion.is_string() ? motion.get<std::string>() : "?") << " " << names(member(s, "chain"))
-        << ": solved " << number(s, "solved_measure") << ", left " << number(s, "remaining_measure");
-    if (member(s, "failure").is_string()) out << " (" << member(s, "failure").get<std::string>() << ")";
+    out << (motion.is_string() ? motion.get<std::string>() : "?");
+    step_text(s, out);
   }
   return out.str();
+}
+
+// "p1 (p1): solved 0, left 2 (termination of motion 'p1' is not inside the goal); p2 (p2, p1): solved 2, left
+// 0".
+std::string steps_text(const json& steps) {
+  return steps_joined(steps, [](const json& s, std::ostringstream& out) {
+    out << " " << names(member(s, "chain")) << ": solved " << number(s, "solved_measure") << ", left "
+        << number(s, "remaining_measure");
+    if (member(s, "failure").is_string()) out << " (" << member(s, "failure").get<std::string>() << ")";
+  });
 }
 
 std::string check_text(const json& check) {
@@ -51,6 +61,18 @@ std::string check_text(const json& check) {
       << member(check, "unstable").get<int>() << " unstable";
   return out.str();
 }
+
+// "v2: strong backprojection area 123.2 (stops outside the target: area 0); ...": a `cmt backproject --json`
+// object's steps.
+std::string backprojection_text(const json& steps) {
+  return steps_joined(steps, [](const json& s, std::ostringstream& out) {
+    out << ": strong backprojection area " << number(s, "strong_area") << " (stops outside the target: area "
+        << number(s, "base_area") << ")";
+  });
+}
+
+// A `cmt backproject --json` object (docs/teaching.md "Backprojections") rather than a teaching session.
+bool is_backprojection(const json& j) { return member(j, "start_inside").is_boolean(); }
 
 }  // namespace
 
@@ -71,6 +93,14 @@ Table teaching_table(const std::vector<TeachingRun>& runs) {
     s << number(j, "seconds");
     Cell session = text(r.label);
     if (!r.view_link.empty()) session.push_back({"3-D view", r.view_link, false, ""});
+    if (is_backprojection(j)) {
+      t.rows.push_back(
+          {text(task.is_string() ? task.get<std::string>() : "?"), session,
+           text(member(j, "start_inside").get<bool>() ? "yes (start in S)" : "no (start not in S)"),
+           text(names(member(j, "motions"))), text(backprojection_text(member(j, "steps"))),
+           text(check_text(member(j, "check"))), text(s.str())});
+      continue;
+    }
     t.rows.push_back(
         {text(task.is_string() ? task.get<std::string>() : "?"), session,
          text(member(j, "solved").is_boolean() && member(j, "solved").get<bool>() ? "yes" : "no"),

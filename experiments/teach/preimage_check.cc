@@ -1,8 +1,7 @@
 // Rollouts from the solved cells of a teaching session (preimage_check.h).
 #include "experiments/teach/preimage_check.h"
 
-#include <fstream>
-
+#include "experiments/teach/task_file_check.h"
 #include "experiments/teach/teach_json.h"
 
 namespace cmt {
@@ -23,27 +22,22 @@ PreimageCheck check_preimages(const std::string& task_yaml, const teaching::Sess
                          (cell.path.empty() ? std::string("_start") : "_" + cell.path) + ".yaml");
       c.task_file = file.string();
       const std::string text = cell_task_yaml(task_yaml, session, cell.chain, c.strategy, cell.region);
-      std::ofstream cell_file(file);
-      cell_file << text;
-      cell_file.close();
-      if (!cell_file) throw std::runtime_error("cannot write " + file.string() + " (--check-dir)");
       ValidateOptions v;
       v.n = options.n;
       v.seed = options.seed;
       v.threads = options.threads;
       v.mode = options.mode;
-      v.counterexample_budget = 0;
-      const ValidationResult r = run_validation(load_task(file), text, c.strategy, v);
-      c.rollouts = static_cast<int>(r.rollouts.size());
+      const TaskFileCheck r = check_task_file(file, text, c.strategy, v, "--check-dir");
+      c.rollouts = r.rollouts;
       c.successes = r.successes;
       c.unstable = r.unstable;
       c.outside = r.outside;
       c.soundness = r.soundness;
-      if (r.counterexample) c.replay = r.counterexample->replay;
+      c.replay = r.replay;
       out.rollouts += c.rollouts;
       out.successes += c.successes;
       out.unstable += c.unstable;
-      out.failures += c.rollouts - c.unstable - c.successes;
+      out.failures += r.failures();
       out.outside += c.outside;
       out.cells.push_back(std::move(c));
     }

@@ -110,11 +110,8 @@ std::string taught_task_yaml(const std::string& task_yaml, const teaching::Sessi
   return emit(taught_task_node(task_yaml, session, strategy, strategy_name));
 }
 
-std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
-                           const std::vector<std::string>& strategy, const std::string& strategy_name,
-                           const Region& start) {
-  YAML::Node root = taught_task_node(task_yaml, session, strategy, strategy_name);
-  const int dimension = session.task().task.dimension;
+namespace {
+void set_start(YAML::Node& root, const Region& start, int dimension) {
   YAML::Node region;
   if (start.kind == Region::Kind::kPoint) {
     region["point"] = coordinates(start.points.front(), dimension);
@@ -124,6 +121,26 @@ std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session
     region[start.kind == Region::Kind::kSegment ? "segment" : "polygon"] = points;
   }
   root["start"] = region;
+}
+}  // namespace
+
+std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
+                           const std::vector<std::string>& strategy, const std::string& strategy_name,
+                           const Region& start) {
+  YAML::Node root = taught_task_node(task_yaml, session, strategy, strategy_name);
+  set_start(root, start, session.task().task.dimension);
+  return emit(root);
+}
+
+std::string strategy_task_yaml(const std::string& task_yaml, int dimension,
+                               const std::vector<std::string>& strategy, const std::string& strategy_name,
+                               const Region& start) {
+  YAML::Node root = YAML::Load(task_yaml);
+  YAML::Node list(YAML::NodeType::Sequence);
+  list.SetStyle(YAML::EmitterStyle::Flow);
+  for (const std::string& name : strategy) list.push_back(name);
+  root["strategies"][strategy_name] = list;
+  set_start(root, start, dimension);
   return emit(root);
 }
 

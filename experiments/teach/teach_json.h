@@ -24,5 +24,9 @@ std::string taught_task_yaml(const std::string& task_yaml, const teaching::Sessi
 std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
                            const std::vector<std::string>& strategy, const std::string& strategy_name,
                            const Region& start);
+// The task file text with `strategy` added (named `strategy_name`) and the start replaced by `start`.
+std::string strategy_task_yaml(const std::string& task_yaml, int dimension,
+                               const std::vector<std::string>& strategy, const std::string& strategy_name,
+                               const Region& start);
 
 }  // namespace cmt

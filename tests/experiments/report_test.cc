@@ -955,4 +955,27 @@ TEST(Report, TeachingSessionsSectionListsEachSession) {
   EXPECT_NE(html.find("<a href=\"../teach/hole_view/index.html\">3-D view</a>"), std::string::npos) << html;
 }
 
+TEST(Report, TeachingSessionsSectionListsABackprojection) {
+  const json backprojection = {
+      {"task", "two_blocks"},
+      {"motions", {"v3", "v2"}},
+      {"start_inside", true},
+      {"seconds", 4.25},
+      {"steps",
+       {{{"motion", "v2"}, {"strong_area", 123.25}, {"base_area", 0.0}},
+        {{"motion", "v3"}, {"strong_area", 162.5}, {"base_area", 48.0}}}},
+      {"check", {{"rollouts", 100}, {"successes", 100}, {"failures", 0}, {"outside", 0}, {"unstable", 0}}}};
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  content.teaching = cmt::report::teaching_table({{"two_blocks_backproject.json", backprojection, ""}});
+  const std::string md = cmt::report::render_markdown(content);
+  EXPECT_NE(
+      md.find("| two_blocks | two_blocks_backproject.json | yes (start in S) | (v3, v2) | v2: strong "
+              "backprojection area 123.2 (stops outside the target: area 0); v3: strong backprojection "
+              "area 162.5 (stops outside the target: area 48) | 100 / 100 reached the goal, 0 failed, 0 "
+              "ends outside the prediction, 0 unstable | 4.25 |"),
+      std::string::npos)
+      << md;
+}
+
 }  // namespace

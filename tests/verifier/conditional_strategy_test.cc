@@ -224,10 +224,15 @@ TEST(ConditionalVerify, ABranchThatStopsOutsideTheGoalFailsAndUnreachableBranche
 
 TEST(ConditionalVerify, TwoBlocksProbeIsReliableWhereTiltAloneIsNot) {
   // models/tasks/two_blocks.yaml: v3 may stick on B's top or slide into the gap (tilt alone: unreliable).
-  // probe stops when the sensed position is near the gap floor, else runs v2 (slide): reliable. The gap floor
-  // (x in [-1.5, 1.5], |y| <= 4: area 24) is all reached, surely passes the test (the box shrunk by eps_s =
-  // .2 is x in [-1.8, 1.8], |y| <= 4.8, z in [-.8, .3]), and so is absent from the else branch, which starts
-  // on B's top (z = 3: more than eps_s above the box, so branch 0 holds none of it).
+  // probe stops when the sensed position is near the gap floor, else runs v2 (slide): reliable. v3 is
+  // atan .3 = .2915 rad from vertical, so every admissible velocity moves left: flights off B's left rim
+  // (1.5, y, 3) land on the gap floor at x <= x_max = 1.5 - 3 tan(.2915 - .2521) = 1.3818 (.2521: theta_v
+  // through the flight cone's circumscribed 24-gon), and nothing reaches the strip beside B's left wall
+  // (the robot cannot slide down the wall's vertical edges: v3 leaves that wall). The reached gap floor, x
+  // in [-1.5, x_max], |y| <= 4 (area 8 x 2.8818 = 23.055, up to the y walls' corners), surely passes the
+  // test (the box shrunk by eps_s = .2 is x in [-1.8, 1.8], |y| <= 4.8, z in [-.8, .3]), and so is absent
+  // from the else branch, which starts on B's top (z = 3: more than eps_s above the box, so branch 0 holds
+  // none of it).
   const auto lt = load_task(std::filesystem::path(CMT_SOURCE_DIR) / "models/tasks/two_blocks.yaml");
   const CSpace& c = lt->cspace;
   const int gap = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0)), top = face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3));
@@ -238,10 +243,11 @@ TEST(ConditionalVerify, TwoBlocksProbeIsReliableWhereTiltAloneIsNot) {
   EXPECT_TRUE(v.reliable) << v.failure;
   ASSERT_EQ(v.steps.size(), 2u);
   const VerifyStep& s = v.steps[0];
-  EXPECT_NEAR(s.termination.face_area(gap), 24.0, 1e-9);
+  const double reached_gap = 8 * (1.5 + 1.5 - 3 * std::tan(std::atan(0.3) - 0.2521));
+  EXPECT_NEAR(s.termination.face_area(gap), reached_gap, 0.01);
   EXPECT_GT(s.termination.face_area(top), 0.0);
   ASSERT_EQ(s.branches.size(), 2u);
-  EXPECT_NEAR(s.branches[0].start->face_area(gap), 24.0, 1e-9);
+  EXPECT_NEAR(s.branches[0].start->face_area(gap), s.termination.face_area(gap), 1e-9);
   EXPECT_EQ(s.branches[0].start->face_area(top), 0.0);
   EXPECT_EQ(s.branches[0].step, -1);
   EXPECT_EQ(s.branches[1].start->face_area(gap), 0.0);

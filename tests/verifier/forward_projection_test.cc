@@ -208,6 +208,32 @@ TEST(TwoBlocks, DownIsUnreliable) {
   EXPECT_TRUE(b_top_outside);
 }
 
+// A point start within the contact lift of B's right rim (x = 4.5, z = 3): the rollouts' contact cannot tell
+// it from a start on the rim, where v3 (down, tilted left) may also slide down B's right wall (it presses
+// into it: v3 . (+x) < 0) into the concave edge at its foot, outside the goal. So (v3, v2) from there is
+// unreliable with the lift and reliable without it (from B's top proper v3 sticks or slides left, then v2
+// slides into the gap); 0.1 in from the rim it is reliable with the lift too.
+TEST(TwoBlocks, StartWithinTheContactLiftOfARimHoldsTheRim) {
+  const auto base = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/two_blocks.yaml");
+  auto at = [&](double x) {
+    LoadedTask t = *base;
+    t.task.start.points = {Vec3(x, 0, 3)};
+    return t;
+  };
+  const int rim = test::edge_between(base->cspace, Vec3(4.5, -4, 3), Vec3(4.5, 4, 3));
+  ASSERT_GE(rim, 0);
+  VerifyOptions lift;
+  lift.contact_lift = 0.0078;  // two_blocks' rollout_contact_lift
+  const Strategy chain = Strategy::sequence("", {"v3", "v2"});
+  const LoadedTask near = at(4.5 - 3e-5), inside = at(4.4);
+  EXPECT_TRUE(start_set(near, lift).contains_atom(rim));
+  EXPECT_FALSE(start_set(near, {}).contains_atom(rim));
+  EXPECT_FALSE(start_set(inside, lift).contains_atom(rim));
+  EXPECT_FALSE(verify_strategy(near, chain, lift).reliable);
+  EXPECT_TRUE(verify_strategy(near, chain).reliable);
+  EXPECT_TRUE(verify_strategy(inside, chain, lift).reliable);
+}
+
 TEST(TwoBlocks, SlideIsReliable) {
   // v2 down-left at 45 deg never sticks on a face (task file comment: >= .535 rad > phi from every face's
   // into-obstacle normal it can touch); it slides off B's left edge, flies down-left with slopes dz/dx in

@@ -24,6 +24,14 @@ struct FlightSource {
   std::vector<Point3> vertices;    // conv(vertices) is the source
   std::vector<Plane3> keep_front;  // only points on the non-negative side of each plane are reachable
   int face = -1;                   // source face index (not a target), or -1
+  // Faces meeting the source face at a concave edge (a -> b): a source vertex strictly inside that edge sees
+  // nothing behind the face's plane (the segment enters the obstacle at once), so the face still occludes
+  // for that vertex (fly's umbras). Empty: such faces do not occlude (sound, looser).
+  struct Wall {
+    int face = -1;
+    Point3 a, b;
+  };
+  std::vector<Wall> walls;
 };
 
 struct FlightHit {

@@ -1,0 +1,149 @@
+// `cmt backproject TASK --motions M1,M2,... [--json] [--check N --points K --seed S --threads T --check-mode
+// extreme|uniform --check-dir DIR]`: the strong backprojections of a chain of damper motions (Buckley §5.4,
+// Alg 5.2; docs/teaching.md "Backprojections"). From the goal backwards: S_k = S_{m_k}(S_{k+1}), S_{n+1} =
+// the goal. Prints per motion the base B (where it may stop outside its target), the weak backprojection W(B)
+// and S, and whether the task's start lies in S_1; --check runs MuJoCo rollouts of the chain from points of
+// S_1. Exit 0: the start lies in S_1 (and the check, if run, had no failure); 1: not; 2: bad input (a spring
+// motion: the spring backprojection, §5.4.4, is not built).
+#include <chrono>
+#include <iostream>
+#include <sstream>
+
+#include "experiments/cli/cli_output.h"
+#include "experiments/cli/command.h"
+#include "experiments/teach/backprojection_check.h"
+#include "experiments/validation/verifier_model.h"
+#include "experiments/validation/verify_json.h"
+#include "models/loaded_task.h"
+#include "models/task_error.h"
+#include "verifier/backprojection.h"
+
+namespace cmt {
+namespace {
+
+struct BackprojectCli {
+  std::string task, motions, check_mode = "extreme", check_dir;
+  int check = 0, points = 20, threads = 1;
+  std::uint64_t seed = 1;
+};
+
+std::vector<std::string> split_names(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');)
+    if (!name.empty()) out.push_back(name);
+  return out;
+}
+
+// The chain's motions, checked: known and dampers.
+std::vector<std::string> chain_of(const LoadedTask& task, const BackprojectCli& cli) {
+  const std::vector<std::string> chain = split_names(cli.motions);
+  if (chain.empty()) throw TaskError(cli.task, "--motions", "give one or more damper motions, first first");
+  for (const std::string& name : chain) {
+    const Motion* m = task.task.find_motion(name);
+    if (!m) throw TaskError(cli.task, "motions." + name, "no such motion (--motions)");
+    if (m->kind != Motion::Kind::kDamper)
+      throw TaskError(cli.task, "motions." + name,
+                      "a spring motion: backprojection is built for the generalized damper only (Sec 5.4.3)");
+  }
+  return chain;
+}
+
+void run_backproject(const BackprojectCli& cli, CommandState& state) {
+  const auto start_time = std::chrono::steady_clock::now();
+  const std::string text = read_task_text(cli.task);
+  const auto task = load_task_from_string(text, cli.task);
+  const std::vector<std::string> chain = chain_of(*task, cli);
+  const AtomCones cones(task->cspace);
+  const double kappa = kStopRelativeSpeed;
+  // S keeps the rollouts' contact resolution from W: their contact lets the robot sink and rise by about the
+  // contact lift, so a start closer to W than that may behave as one in it.
+  const double margin = rollout_contact_lift(*task);
+  ReachedSet target = ReachedSet::from_regions(*task, task->task.goal);
+  nlohmann::json steps = nlohmann::json::array();
+  bool fallback = false;
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const DamperBackprojection b =
+        backproject_damper(*task, cones, target, task->task.find_motion(*it)->target, kappa, margin);
+    fallback = fallback || b.fallback;
+    steps.push_back(
+        {{"motion", *it},
+         {"base", pieces_json(*task, b.base.pieces())},
+         {"base_area", b.base.area()},
+         {"weak_area", b.weak.area()},
+         {"strong", pieces_json(*task, b.strong.pieces())},
+         {"strong_area", b.strong.area()},
+         {"fallback", b.fallback},
+         {"work_items", b.steps},
+         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
+    target = b.strong;
+  }
+  const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
+  const std::vector<ReachedPiece> outside = start.pieces_outside(target, task->surface_tolerance());
+  nlohmann::json out = {{"task", task->task.name},
+                        {"motions", chain},
+                        {"stop_relative_speed", kappa},
+                        {"margin", margin},
+                        {"steps", steps},
+                        {"start_inside", outside.empty()},
+                        {"start_outside", pieces_json(*task, outside)},
+                        {"fallback", fallback}};
+  bool check_ok = true;
+  if (cli.check > 0) {
+    BackprojectionCheckOptions o;
+    o.points = cli.points;
+    o.n = cli.check;
+    o.seed = cli.seed;
+    o.threads = cli.threads;
+    o.mode = cli.check_mode == "uniform" ? SampleMode::kUniform : SampleMode::kExtreme;
+    o.dir = cli.check_dir.empty() ? std::filesystem::temp_directory_path() / "cmt-backproject"
+                                  : std::filesystem::path(cli.check_dir);
+    const BackprojectionCheck check = check_backprojection(text, *task, chain, target, o);
+    check_ok = check.failures == 0 && check.outside == 0;
+    out["check"] = backprojection_check_json(check, task->task.dimension);
+  }
+  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  if (state.json) {
+    print_json(out);
+  } else {
+    for (const nlohmann::json& s : steps)
+      std::cout << s["motion"].get<std::string>() << ": may stop outside its target on "
+                << s["base_area"].get<double>() << " area; weak backprojection "
+                << s["weak_area"].get<double>() << "; strong backprojection "
+                << s["strong_area"].get<double>() << "\n";
+    std::cout << "start " << (outside.empty() ? "inside" : "not inside") << " the strong backprojection\n";
+    if (out.contains("check"))
+      std::cout << "check: " << out["check"]["successes"] << " of " << out["check"]["rollouts"]
+                << " rollouts from " << out["check"]["points"].size() << " points reach the goal ("
+                << out["check"]["unstable"] << " unstable, " << out["check"]["outside"]
+                << " ends outside the "
+                << "prediction)\n";
+  }
+  state.exit_status = outside.empty() && check_ok ? kExitSuccess : 1;
+}
+
+}  // namespace
+
+void add_backproject_command(CLI::App& app, CommandState& state) {
+  auto cli = std::make_shared<BackprojectCli>();
+  auto* cmd = app.add_subcommand(
+      "backproject", "strong backprojections of a chain of damper motions from the goal (Buckley Sec 5.4)");
+  cmd->add_option("TASK", cli->task, "task YAML file")->required();
+  cmd->add_option("--motions", cli->motions, "the chain's damper motions, first first (comma separated)")
+      ->required();
+  cmd->add_option("--check", cli->check, "run this many rollouts from each of --points points of S (0: none)")
+      ->check(CLI::Range(0, 100000));
+  cmd->add_option("--points", cli->points, "start points of the check (default 20)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--seed", cli->seed, "seed of the check's points and rollouts (default 1)");
+  cmd->add_option("--threads", cli->threads, "rollout threads (default 1)")->check(CLI::Range(1, 256));
+  cmd->add_option("--check-mode", cli->check_mode,
+                  "error sampling of the check: extreme (default) or uniform")
+      ->check(CLI::IsMember({"uniform", "extreme"}));
+  cmd->add_option("--check-dir", cli->check_dir, "where the check's point task files go");
+  cmd->add_flag("--json", state.json, "print one JSON object on stdout");
+  cmd->callback([cli, &state] { run_backproject(*cli, state); });
+}
+
+}  // namespace cmt

@@ -1,0 +1,65 @@
+// Weak and strong backprojections of one generalized-damper motion (Buckley §5.4.2-5.4.3, Alg 5.2): the
+// contact points from which the motion might reach a set, and those from which it surely ends in a target.
+// The reversal of the forward projection (verifier/forward_projection.h) under the same first-order model:
+// velocities anywhere in cone(v, theta_v), switching freely; sliding by Alg 4.3 and tangential flight (the
+// face's sweep wedge); straight-line flight with occlusion by single occluders.
+#pragma once
+
+#include "models/loaded_task.h"
+#include "verifier/atom_cone.h"
+#include "verifier/reached_set.h"
+
+namespace cmt {
+
+// W_m(from), Alg 5.2: every contact point from which the damper motion v might reach `from` (an
+// over-approximation). Worklist fixpoint over the ReachedSet: each newly added part is processed once,
+//  - backsliding: on a face that is not must-stick, the part swept back by the face's wedge (Alg 4.3 with
+//    tangential flight), clipped to the face; along an edge, the rest of the edge behind the part in each
+//    direction the robot may slide along it; at a vertex, the whole of each incident edge that may slide
+//    toward it;
+//  - straight lines: the flight of the part along cone(-v, theta_v) (the cone of Fig 5.14 reversed), kept in
+//    front of its face (at an edge, of either face if convex, of both if not), hitting faces from
+//    which some admissible velocity lifts off; occluded by single occluders as in the forward flight;
+//  - closure: a face part's boundary on the face's edges and vertices (the same points).
+// Falls back to every atom (sound) after kMaxBackprojectionSteps work items.
+struct WeakBackprojection {
+  ReachedSet weak;
+  bool fallback = false;
+  int steps = 0;
+};
+inline constexpr int kMaxBackprojectionSteps = 200000;
+WeakBackprojection weak_backproject_damper(const LoadedTask& task, const AtomCones& cones,
+                                           const ReachedSet& from, const Vec3& v);
+
+// Strong backprojection S_m(X) = complement of W_m(B) (§5.4.2), B = the points outside the target X where the
+// motion may stop: every point of an atom whose damper class is must or may (with `stop_relative_speed` as in
+// forward_project_damper: slow slides count as stops) that is not in X. `strong` is the whole C-space surface
+// less W_m(B) grown by kBackprojectionRelativeMargin x the scene scale: the closed set `strong` keeps that
+// distance from every point that might reach B, far above the region kernel's rounding (1.5 cells of 2^-36
+// scale) and the forward projection's own outward margins (umbras shrunk by 1e-9 of the scale, which a
+// corner of an occluder and the divergence of rays magnify), so that the forward projection of `strong`
+// stays out of B too.
+// Under the first-order damper model a motion from a point of `strong` never stops outside X; that it stops
+// at all is the forward projection's business (slide_forever, may_not_terminate), so callers that certify a
+// pre-image still verify it forward (verifier/teaching).
+inline constexpr double kBackprojectionRelativeMargin = 1e-6;
+struct DamperBackprojection {
+  ReachedSet base;    // B
+  ReachedSet weak;    // W_m(B)
+  ReachedSet strong;  // S_m(X)
+  bool fallback = false;
+  int steps = 0;
+};
+// `margin` (task units, >= kBackprojectionRelativeMargin x scale; 0 takes that): a caller that runs S in the
+// rollouts passes their contact resolution (experiments: the contact lift), since their contact cannot tell a
+// robot that close to W from one in it.
+DamperBackprojection backproject_damper(const LoadedTask& task, const AtomCones& cones,
+                                        const ReachedSet& target, const Vec3& v,
+                                        double stop_relative_speed = 0, double margin = 0);
+
+// The closed complement of `set` on the C-space surface, kept `margin` (task units) away from it: whole faces
+// less the set's face parts and its edge and vertex points grown by margin, whole edges less its intervals
+// grown by margin (and less the ends near its vertices), the vertices farther than margin from it.
+ReachedSet surface_complement(const ReachedSet& set, double margin);
+
+}  // namespace cmt
