@@ -28,7 +28,8 @@ teach peg_in_hole_real_teach peg_in_hole_real --check 300  # §6.3.4's scaled ho
 # Buckley Alg 5.2 for dampers: two_blocks' (v3, v2) backprojected from the goal, rollouts from 10 points of S.
 status=0
 build/bin/cmt backproject models/tasks/two_blocks.yaml --motions v3,v2 --check 10 --points 10 --seed 1 \
-  --threads 2 --check-dir "$dir/two_blocks_backproject_points" --json >"$dir/two_blocks_backproject.json" || status=$?
+  --threads 2 --check-dir "$dir/two_blocks_backproject_points" --view "$dir/two_blocks_backproject_view" --json \
+  >"$dir/two_blocks_backproject.json" || status=$?
 if [ "$status" -gt 1 ]; then
   echo "cmt backproject failed with status $status" >&2
   exit "$status"

@@ -1,28 +1,32 @@
-// `cmt backproject TASK --motions M1,M2,... [--json] [--check N --points K --seed S --threads T --check-mode
-// extreme|uniform --check-dir DIR]`: the strong backprojections of a chain of damper motions (Buckley §5.4,
-// Alg 5.2; docs/teaching.md "Backprojections"). From the goal backwards: S_k = S_{m_k}(S_{k+1}), S_{n+1} =
-// the goal. Prints per motion the base B (where it may stop outside its target), the weak backprojection W(B)
-// and S, and whether the task's start lies in S_1; --check runs MuJoCo rollouts of the chain from points of
-// S_1. Exit 0: the start lies in S_1 (and the check, if run, had no failure); 1: not; 2: bad input (a spring
-// motion: the spring backprojection, §5.4.4, is not built).
+// `cmt backproject TASK --motions M1,M2,... [--json] [--view DIR] [--check N --points K --seed S --threads T
+// --check-mode extreme|uniform --check-dir DIR]`: the strong backprojections of a chain of damper motions
+// (Buckley §5.4, Alg 5.2; docs/teaching.md "Backprojections"). From the goal backwards: S_k =
+// S_{m_k}(S_{k+1}), S_{n+1} = the goal. Prints per motion the base B (where it may stop outside its target),
+// the weak backprojection W(B) and S, whether the task's start lies in S_1, and the forward verifier's
+// verdict for the chain from S_1 under the rollouts' model; --check runs MuJoCo rollouts of the chain from
+// points of S_1. Exit 0: the start lies in S_1 (and the check, if run, had no failure); 1: not; 2: bad input
+// (a spring motion: the spring backprojection, §5.4.4, is not built).
 #include <chrono>
 #include <iostream>
 #include <sstream>
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/cli/teach_view.h"
+#include "experiments/report/view_page.h"
 #include "experiments/teach/backprojection_check.h"
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
 #include "verifier/backprojection.h"
+#include "verifier/verify.h"
 
 namespace cmt {
 namespace {
 
 struct BackprojectCli {
-  std::string task, motions, check_mode = "extreme", check_dir;
+  std::string task, motions, check_mode = "extreme", check_dir, view;
   int check = 0, points = 20, threads = 1;
   std::uint64_t seed = 1;
 };
@@ -61,6 +65,7 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   const double margin = rollout_contact_lift(*task);
   ReachedSet target = ReachedSet::from_regions(*task, task->task.goal);
   nlohmann::json steps = nlohmann::json::array();
+  std::vector<BackprojectionLayers> layers;
   bool fallback = false;
   for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -77,6 +82,7 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
          {"fallback", b.fallback},
          {"work_items", b.steps},
          {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
+    if (!cli.view.empty()) layers.push_back({*it, b.base.pieces(), b.weak.pieces(), b.strong.pieces()});
     target = b.strong;
   }
   const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
@@ -89,6 +95,13 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
                         {"start_inside", outside.empty()},
                         {"start_outside", pieces_json(*task, outside)},
                         {"fallback", fallback}};
+  // The forward verifier under the rollouts' model (contact lift, servo coast, slow stops) from S_1: the
+  // backprojection is first-order, so this is what certifies S_1 for the rollouts.
+  const VerifyResult forward =
+      verify_strategy_from(*task, Strategy::sequence("", chain), target, rollout_verify_options(*task));
+  out["forward"] = {{"reliable", forward.reliable},
+                    {"failure", forward.failure},
+                    {"outside_goal", pieces_json(*task, forward.outside_goal)}};
   bool check_ok = true;
   if (cli.check > 0) {
     BackprojectionCheckOptions o;
@@ -103,6 +116,13 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
     check_ok = check.failures == 0 && check.outside == 0;
     out["check"] = backprojection_check_json(check, task->task.dimension);
   }
+  if (!cli.view.empty()) {
+    const std::filesystem::path page = std::filesystem::path(cli.view) / "index.html";
+    report::write_view_assets(cli.view);
+    report::write_view_page(backprojection_view_data(*task, layers, task->task.name + " / backprojections"),
+                            page, ".");
+    out["view"] = page.string();
+  }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   if (state.json) {
     print_json(out);
@@ -112,7 +132,9 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
                 << s["base_area"].get<double>() << " area; weak backprojection "
                 << s["weak_area"].get<double>() << "; strong backprojection "
                 << s["strong_area"].get<double>() << "\n";
-    std::cout << "start " << (outside.empty() ? "inside" : "not inside") << " the strong backprojection\n";
+    std::cout << "start " << (outside.empty() ? "inside" : "not inside") << " the strong backprojection\n"
+              << "forward verification from it under the rollouts' model: "
+              << (forward.reliable ? "reliable" : "not reliable: " + forward.failure) << "\n";
     if (out.contains("check"))
       std::cout << "check: " << out["check"]["successes"] << " of " << out["check"]["rollouts"]
                 << " rollouts from " << out["check"]["points"].size() << " points reach the goal ("
@@ -142,6 +164,8 @@ void add_backproject_command(CLI::App& app, CommandState& state) {
                   "error sampling of the check: extreme (default) or uniform")
       ->check(CLI::IsMember({"uniform", "extreme"}));
   cmd->add_option("--check-dir", cli->check_dir, "where the check's point task files go");
+  cmd->add_option("--view", cli->view,
+                  "write a 3-D page to this directory: per motion B, W(B) and S (Buckley Figs 5.5, 5.8)");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([cli, &state] { run_backproject(*cli, state); });
 }

@@ -1,6 +1,8 @@
 // Layers of a teaching session's 3-D page (teach_view.h).
 #include "experiments/cli/teach_view.h"
 
+#include <tuple>
+
 #include "experiments/report/view_data.h"
 
 namespace cmt {
@@ -70,6 +72,33 @@ json teach_view_data(const teaching::Session& session, const std::string& title)
       json layer = report::make_layer(id + "-" + spec.suffix, spec.name, group, spec.color, spec.opacity);
       add_pieces(layer, task, spec.pieces, spec.name);
       layer["visible"] = k + 1 == steps.size();  // the last step shown first; the others a click away
+      data["layers"].push_back(std::move(layer));
+    }
+  }
+  return data;
+}
+
+json backprojection_view_data(const LoadedTask& task, const std::vector<BackprojectionLayers>& steps,
+                              const std::string& title) {
+  report::ViewInput input;
+  input.task = &task;
+  input.title = title;
+  json data = report::view_data(input);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const BackprojectionLayers& s = steps[k];
+    const std::string id = "motion" + std::to_string(k + 1);
+    const std::string group = s.motion + " (backprojection " + std::to_string(k + 1) + " from the goal)";
+    const std::vector<
+        std::tuple<std::string, std::string, std::string, double, const std::vector<ReachedPiece>*>>
+        specs = {{"strong", "strong backprojection S: surely stops in the target", "#00a36c", 0.6, &s.strong},
+                 {"weak", "weak backprojection W(B): may reach a stop outside the target", "#ff7f0e", 0.35,
+                  &s.weak},
+                 {"base", "B: may stop outside the target (points to avoid)", "#d62728", 0.9, &s.base}};
+    for (const auto& [suffix, name, color, opacity, pieces] : specs) {
+      if (pieces->empty()) continue;
+      json layer = report::make_layer(id + "-" + suffix, name, group, color, opacity);
+      add_pieces(layer, task, *pieces, name);
+      layer["visible"] = k + 1 == steps.size() && suffix != "weak";  // the chain's first motion shown first
       data["layers"].push_back(std::move(layer));
     }
   }

@@ -4,6 +4,7 @@
 // S, and bad input.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "tests/experiments/cmt_runner.h"
@@ -33,12 +34,17 @@ TEST(CmtBackproject, TwoBlocksChainsHoldTheStartAndDownDoesNot) {
   ASSERT_EQ(c["steps"].size(), 2u);
   EXPECT_EQ(c["steps"][0]["motion"], "v2");  // from the goal backwards
   EXPECT_EQ(c["steps"][1]["motion"], "v3");
+  // The forward verifier's verdict from all of S_1 under the rollouts' model, with the pieces it finds
+  // outside the goal when it does not certify S_1 (docs/teaching.md: the servo coast is not backprojected).
+  ASSERT_TRUE(c["forward"]["reliable"].is_boolean());
+  EXPECT_EQ(c["forward"]["reliable"].get<bool>(), c["forward"]["outside_goal"].empty());
 }
 
 TEST(CmtBackproject, RolloutsFromPointsOfTheStrongBackprojectionReachTheGoal) {
   const std::string dir = ::testing::TempDir() + "cmt_backproject_check";
-  const Result r = run("backproject " + task("two_blocks") +
-                       " --motions v3,v2 --check 6 --points 8 --seed 5 --json --check-dir " + dir);
+  const Result r =
+      run("backproject " + task("two_blocks") + " --motions v3,v2 --check 6 --points 8 --seed 5 --json " +
+          "--check-dir " + dir + " --view " + dir + "/view");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   const auto& check = j["check"];
@@ -47,6 +53,9 @@ TEST(CmtBackproject, RolloutsFromPointsOfTheStrongBackprojectionReachTheGoal) {
   EXPECT_EQ(check["failures"], 0);
   EXPECT_EQ(check["outside"], 0);
   EXPECT_EQ(check["successes"].get<int>() + check["unstable"].get<int>(), 48);
+  // The 3-D page: per motion B, W(B) and S.
+  EXPECT_TRUE(std::filesystem::exists(dir + "/view/index.html"));
+  EXPECT_EQ(j["view"], dir + "/view/index.html");
 }
 
 TEST(CmtBackproject, SpringOrUnknownMotionsAreBadInput) {
