@@ -157,10 +157,12 @@ class BackProjector {
       // space is the union of the two fronts: one flight per front) and of both at a concave or flat one.
       if (e.shape == EdgeShape::kConvex) {
         for (int f : e.faces) fly_back(source, {r_.charts[f].plane}, -1);
-      } else {
+      } else if (e.shape == EdgeShape::kConcave || e.shape == EdgeShape::kFlat) {
         std::vector<Plane3> fronts;
         for (int f : e.faces) fronts.push_back(r_.charts[f].plane);
         fly_back(source, fronts, -1);
+      } else {
+        fly_back(source, {}, -1);  // a non-manifold edge keeps no front, as the forward flight from it
       }
     }
   }
