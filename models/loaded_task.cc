@@ -23,13 +23,14 @@ void check_on_surface(const LoadedTask& lt, const Region& region) {
   }
 }
 
-std::shared_ptr<const LoadedTask> finish(Task task) {
+std::shared_ptr<const LoadedTask> finish(Task task, bool goal_on_surface = true) {
   apply_scene_defaults(task);
   check_task_ranges(task);
   CSpace cspace = CSpace::build(task);
   auto loaded = std::make_shared<LoadedTask>(LoadedTask{std::move(task), std::move(cspace)});
   check_on_surface(*loaded, loaded->task.start);
-  for (const Region& g : loaded->task.goal) check_on_surface(*loaded, g);
+  if (goal_on_surface)
+    for (const Region& g : loaded->task.goal) check_on_surface(*loaded, g);
   return loaded;
 }
 
@@ -56,6 +57,10 @@ std::vector<Vec3> region_samples(const Region& region, int per_side) {
 }
 
 std::shared_ptr<const LoadedTask> load_task_from_task(Task task) { return finish(std::move(task)); }
+
+std::shared_ptr<const LoadedTask> load_task_slice(const Task& task, const std::vector<double>& model_values) {
+  return finish(task_at(task, model_values), /*goal_on_surface=*/false);
+}
 
 std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path) {
   return finish(parse_task_file(path));

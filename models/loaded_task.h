@@ -28,6 +28,10 @@ std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path);
 std::shared_ptr<const LoadedTask> load_task_from_string(const std::string& yaml_text,
                                                         const std::string& label);
 
+// A slice of a task with model error (models/model_error.h): the task read at `model_values` and built and
+// checked as load_task does, except that the goal may leave the contact surface (Donald l.867: the goal may
+// vanish in some slices). The start must stay on the surface in every slice (TaskError otherwise).
+std::shared_ptr<const LoadedTask> load_task_slice(const Task& task, const std::vector<double>& model_values);
 // Points that stand for a region when checking it: its vertices, and for segments and polygons a grid of
 // interior points (a segment across a hole has its ends on the surface but not its middle).
 std::vector<Vec3> region_samples(const Region& region, int per_side = 16);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "models/model_error.h"
+
 namespace cmt {
 
 using Vec3 = Eigen::Vector3d;
@@ -136,6 +138,14 @@ struct Task {
   std::vector<Region> goal;
   std::vector<Motion> motions;
   std::vector<Strategy> strategies;
+
+  // Model error (models/model_error.h; empty without it): the geometry above is read at model_values (the
+  // nominal values, or a slice's); model_coordinates holds every affine coordinate of the parts, the bounds
+  // and the goal as read, and model_source the file's text, to read other slices (task_at).
+  std::vector<ModelParameter> model_error;
+  std::vector<double> model_values;
+  std::vector<ModelCoordinate> model_coordinates;
+  std::string model_source;
 
   const Motion* find_motion(const std::string& name) const;
   const Strategy* find_strategy(const std::string& name) const;

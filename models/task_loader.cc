@@ -26,13 +26,15 @@ using Node = YamlNode;
 
 class Parser {
  public:
-  explicit Parser(std::string file_label) : file_(std::move(file_label)) {}
+  Parser(std::string file_label, const std::vector<double>* model_values)
+      : file_(std::move(file_label)), requested_values_(model_values) {}
 
   Task parse(const YAML::Node& root_node) {
     Node root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
     root.require_map({"name", "description", "units", "friction", "uncertainty", "dimension", "robot",
-                      "environment", "cspace", "bounds", "start", "goal", "motions", "strategies"});
+                      "environment", "cspace", "bounds", "start", "goal", "motions", "strategies",
+                      "model_error"});
     Task task;
     task.source_file = file_;
     task.name = root.at("name").string();
@@ -58,24 +60,38 @@ class Parser {
     }
     if (root.has("friction")) task.friction = friction(root.at("friction"));
     task.uncertainty = parse_uncertainty(root.at("uncertainty"));
+    if (root.has("model_error")) parse_model_error(root.at("model_error"), task);
+    if (requested_values_ && requested_values_->size() != task.model_error.size())
+      root.fail("a slice needs " + std::to_string(task.model_error.size()) + " model parameter values, got " +
+                std::to_string(requested_values_->size()));
+    model_ = &task;
 
     const bool physical = root.has("robot") || root.has("environment");
     if (physical && root.has("cspace"))
       root.at("cspace").fail("give either robot + environment (physical parts) or cspace, not both");
+    // Parts, bounds and goal may be affine in the model parameters; their coordinates and the start's are
+    // recorded (ModelCoordinate::role) to find the critical slices.
+    affine_ = true;
     if (physical) {
+      role_ = ModelCoordinate::Role::kRobot;
       task.robot = parse_parts(root.at("robot"), task.friction, /*robot=*/true);
       if (task.robot.empty()) root.at("robot").fail("the robot needs at least one part");
+      role_ = ModelCoordinate::Role::kEnvironment;
       task.environment = parse_parts(root.at("environment"), task.friction, /*robot=*/false);
     } else if (root.has("cspace") || root.raw()["cspace"].IsDefined()) {
+      role_ = ModelCoordinate::Role::kConfiguration;
       if (root.has("cspace")) task.cspace = parse_parts(root.at("cspace"), task.friction, /*robot=*/false);
     } else {
       root.fail("missing geometry: give robot + environment (physical parts) or cspace (C-space obstacles)");
     }
+    role_ = ModelCoordinate::Role::kConfiguration;
     if (root.has("bounds")) task.bounds = parse_box(root.at("bounds"), {"min", "max"});
     if (task.cspace.empty() && task.environment.empty() && !task.bounds)
       root.fail("no obstacles and no bounds: the configuration space has no contact surface");
 
+    affine_ = false;
     task.start = parse_region(root.at("start"));
+    affine_ = true;
     const Node goal = root.at("goal");
     if (goal.is_sequence()) {
       if (goal.size() == 0) goal.fail("the goal list is empty");
@@ -84,6 +100,8 @@ class Parser {
     } else {
       task.goal.push_back(parse_region(goal));
     }
+    affine_ = false;
+    role_ = ModelCoordinate::Role::kNone;
     if (root.has("motions")) parse_motions(root.at("motions"), task);
     if (root.has("strategies")) parse_strategies(root.at("strategies"), task);
     return task;
@@ -104,6 +122,71 @@ class Parser {
     std::ostringstream s;
     s << v;
     return s.str();
+  }
+
+  // model_error: {name: [min, max]} or {name: {interval: [min, max], nominal: v}} (docs/task-format.md).
+  void parse_model_error(const Node& n, Task& task) const {
+    const std::vector<std::string> names = n.keys();
+    if (names.empty()) n.fail("no model parameters (omit model_error for a task without model error)");
+    check_size(n, names.size(), kMaxModelParameters, "model parameters");
+    for (const std::string& name : names) {
+      const Node item = n.at(name);
+      if (!std::regex_match(name, std::regex("[a-z_][a-z0-9_]*")))
+        item.fail("a model parameter name must match [a-z_][a-z0-9_]*");
+      ModelParameter p;
+      p.name = name;
+      const Node interval = item.is_map() ? item.at("interval") : item;
+      if (item.is_map()) item.require_map({"interval", "nominal"});
+      const std::vector<double> ends = interval.numbers();
+      if (ends.size() != 2)
+        interval.fail("an interval is [min, max], got " + std::to_string(ends.size()) + " numbers");
+      p.min = ends[0];
+      p.max = ends[1];
+      if (!(p.min <= p.max)) interval.fail("min " + format(p.min) + " must be <= max " + format(p.max));
+      if (std::max(std::abs(p.min), std::abs(p.max)) > kMaxCoordinate)
+        interval.fail("magnitude exceeds " + format(kMaxCoordinate));
+      p.nominal = (p.min + p.max) / 2;
+      if (item.is_map() && item.has("nominal")) {
+        p.nominal = item.at("nominal").number();
+        if (p.nominal < p.min || p.nominal > p.max)
+          item.at("nominal").fail("must lie in [" + format(p.min) + ", " + format(p.max) + "]");
+      }
+      task.model_error.push_back(p);
+    }
+    if (requested_values_ && requested_values_->size() != task.model_error.size())
+      n.fail("a slice needs " + std::to_string(task.model_error.size()) + " model parameter values, got " +
+             std::to_string(requested_values_->size()));
+    for (std::size_t i = 0; i < task.model_error.size(); ++i) {
+      const ModelParameter& p = task.model_error[i];
+      const double v = requested_values_ ? (*requested_values_)[i] : p.nominal;
+      if (!(v >= p.min && v <= p.max))
+        n.at(p.name).fail("slice value " + format(v) + " is outside [" + format(p.min) + ", " +
+                          format(p.max) + "]");
+      task.model_values.push_back(v);
+    }
+  }
+
+  // A coordinate: a number, or (with model_error, in the parts, the bounds and the goal) an affine expression
+  // in the model parameters, read at the task's model values and recorded for the critical slices.
+  double model_coordinate(const Node& n, int axis) const {
+    if (!model_ || model_->model_error.empty() || !n.raw().IsScalar()) return n.number();
+    double number = 0;
+    if (YAML::convert<double>::decode(n.raw(), number)) {
+      if (role_ != ModelCoordinate::Role::kNone)
+        model_->model_coordinates.push_back(
+            {axis, AffineValue{number, std::vector<double>(model_->model_error.size(), 0)}, role_});
+      return n.number();
+    }
+    if (!affine_)
+      n.fail("expected a number: only parts, bounds and goal regions may depend on the model parameters");
+    AffineValue value;
+    try {
+      value = parse_affine(n.raw().Scalar(), model_->model_error);
+    } catch (const std::invalid_argument& e) {
+      n.fail(std::string("not a number or an affine expression in the model parameters: ") + e.what());
+    }
+    model_->model_coordinates.push_back({axis, value, role_});
+    return value.at(model_->model_values);
   }
 
   Uncertainty parse_uncertainty(const Node& n) const {
@@ -130,7 +213,7 @@ class Parser {
     if (static_cast<int>(n.size()) != dimension_)
       n.fail("expected " + std::to_string(dimension_) + " numbers, got " + std::to_string(n.size()));
     const auto coordinate = [&](std::size_t i) {
-      const double v = n.item(i).number();
+      const double v = model_coordinate(n.item(i), i == 1 && dimension_ == 2 ? 2 : static_cast<int>(i));
       if (std::abs(v) > kMaxCoordinate)
         n.item(i).fail("magnitude " + format(std::abs(v)) + " exceeds the largest accepted coordinate " +
                        format(kMaxCoordinate) + " (docs/task-format.md \"Accepted ranges and sizes\")");
@@ -430,14 +513,21 @@ class Parser {
 
   std::string file_;
   int dimension_ = 3;
+  const std::vector<double>* requested_values_ = nullptr;  // a slice's model values (nullptr: nominal)
+  Task* model_ = nullptr;                                  // the task being read, once model_error is known
+  bool affine_ = false;                                    // reading parts, bounds or goal
+  ModelCoordinate::Role role_ = ModelCoordinate::Role::kNone;  // what the coordinates being read are
 };
 
 }  // namespace
 
-Task parse_task_string(const std::string& yaml_text, const std::string& file_label) {
+Task parse_task_string(const std::string& yaml_text, const std::string& file_label,
+                       const std::vector<double>* model_values) {
   const YAML::Node root = load_yaml_document(yaml_text, file_label);
   try {
-    return Parser(file_label).parse(root);
+    Task task = Parser(file_label, model_values).parse(root);
+    if (!task.model_error.empty()) task.model_source = yaml_text;
+    return task;
   } catch (const YAML::Exception& e) {
     throw TaskError(file_label, "", std::string("malformed YAML: ") + e.what());
   }
@@ -455,6 +545,15 @@ Task parse_task_file(const std::filesystem::path& path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   return parse_task_string(buffer.str(), path.string());
+}
+
+Task task_at(const Task& task, const std::vector<double>& model_values) {
+  if (task.model_error.empty()) {
+    if (!model_values.empty())
+      throw TaskError(task.source_file, "model_error", "the task has no model parameters");
+    return task;
+  }
+  return parse_task_string(task.model_source, task.source_file, &model_values);
 }
 
 }  // namespace cmt

@@ -20,6 +20,12 @@ inline constexpr double kPlanarClipHalfDepth = 0.5;
 
 // Parses and checks the schema. `file_label` names the file in messages (defaults to the path).
 Task parse_task_file(const std::filesystem::path& path);
-Task parse_task_string(const std::string& yaml_text, const std::string& file_label);
+// `model_values` (one per model parameter, in file order) reads a slice of a task with model_error; nullptr
+// reads it at the nominal values.
+Task parse_task_string(const std::string& yaml_text, const std::string& file_label,
+                       const std::vector<double>* model_values = nullptr);
+// The task read again at other model values (a slice of C x J, models/model_error.h); TaskError when a value
+// is outside its interval or the geometry there is not accepted (a part degenerates).
+Task task_at(const Task& task, const std::vector<double>& model_values);
 
 }  // namespace cmt

@@ -90,6 +90,11 @@ Task transformed(const Task& task, const TaskTransform& map) {
   // any units): its y coordinates are not lengths of the task and stay as they are.
   PlanarAwareTransform m{map, task.dimension == 2};
   Task out = task;
+  // The copy is the nominal slice as a plain task: the model error's source text is not transformed.
+  out.model_error.clear();
+  out.model_values.clear();
+  out.model_coordinates.clear();
+  out.model_source.clear();
   if (map.units) out.units = *map.units;
   out.uncertainty.eps_s *= map.scale;
   out.uncertainty.eps_p *= map.scale;

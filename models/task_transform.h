@@ -30,7 +30,8 @@ struct TaskTransform {
 };
 
 // Throws std::invalid_argument when the rotation is not a proper signed permutation, or when a planar task
-// (dimension 2, extruded along y) would be turned out of its x-z plane.
+// (dimension 2, extruded along y) would be turned out of its x-z plane. A task with model error becomes its
+// nominal slice, without model error.
 Task transformed(const Task& task, const TaskTransform& map);
 
 // Builds the configuration space of an in-memory task and checks its regions, as load_task does for a file.

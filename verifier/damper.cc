@@ -96,10 +96,15 @@ EdgeSliding edge_sliding(const CSpace& cspace, int edge_atom_id, const Vec3& v, 
   EdgeSliding out;
   if (classify_damper(cspace, edge_atom_id, v, theta_v) == StickClass::kMust) return out;
   const Edge& e = cspace.edges()[cspace.atom_index(edge_atom_id)];
-  // At a concave edge whose faces are at least square (n_f . n_g >= 0) a velocity leaving one face leaves the
-  // edge; in a sharper crease the reaction from one face can press the robot into the other.
-  if (e.shape == EdgeShape::kConcave && e.faces.size() == 2 &&
-      cspace.faces()[e.faces[0]].normal.dot(cspace.faces()[e.faces[1]].normal) >= 0)
+  // A velocity leaving one face leaves the edge: at a convex edge it points into free space (the union of the
+  // faces' fronts), at a concave edge whose faces are at least square (n_f . n_g >= 0) it slides off along
+  // the other face; in a sharper crease the reaction from one face can press the robot into the other.
+  const bool leaves_with_a_face =
+      e.faces.size() == 2 &&
+      (e.shape == EdgeShape::kConvex ||
+       (e.shape == EdgeShape::kConcave &&
+        cspace.faces()[e.faces[0]].normal.dot(cspace.faces()[e.faces[1]].normal) >= 0));
+  if (leaves_with_a_face)
     for (int f : e.faces)
       if (v.normalized().dot(cspace.faces()[f].normal) > std::sin(theta_v + kSlidingConeSlack)) return out;
   const Vec3 dir = (e.b - e.a).normalized();

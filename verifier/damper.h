@@ -44,10 +44,11 @@ SlidingCone sliding_cone(const Vec3& normal, double mu, const Vec3& v, double th
 
 // Sliding along an edge (direction e = b − a): may the robot move toward b, toward a? Over-approximation: a
 // direction is possible when some admissible velocity has a component along it and the robot need not stick;
-// at a concave edge whose faces are at least square (n_f . n_g >= 0) also only when some admissible velocity
-// presses into each face (v . n <= sin theta_v):
-// a velocity that leaves one face moves the robot onto the other face's plane, which that face's sliding
-// covers (the forward projection seeds both faces from every reached edge point).
+// at a convex edge, and at a concave edge whose faces are at least square (n_f . n_g >= 0), also only when
+// some admissible velocity presses into each face (v . n <= sin theta_v): a velocity that leaves a face of a
+// convex edge points into free space (the flights from the edge cover it), and one that leaves a face of such
+// a concave edge moves the robot onto the other face's plane, which that face's sliding covers (the forward
+// projection seeds both faces from every reached edge point).
 struct EdgeSliding {
   bool toward_a = false;
   bool toward_b = false;

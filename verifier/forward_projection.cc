@@ -25,6 +25,9 @@ constexpr int kLiftStripRounds = 8;
 // Landing coasts that grew one face before its whole polygon is taken (coast_after_landing); rim coast
 // flights from one face over one edge before they start from the whole edge (coast_over_rims).
 constexpr int kCoastRounds = 24;
+// A rim coast's hit on the rim's own faces within this fraction of the scene scale of the rim's line is the
+// rim itself (coast_over_rims): far above the flight sections' rounding pads (kFlightSectionRelativeError).
+constexpr double kRimLineRelativeTolerance = 1e-9;
 // Relative slack on the servo coast's length (covers rounding of the sector's double corners).
 constexpr double kCoastRelativeSlack = 1e-9;
 
@@ -333,9 +336,29 @@ class Projector {
         }
       for (int g : edge.faces) {
         src.keep_front = {r_.charts[g].plane};
-        absorb(fly(r_, src, cone_), {}, sector);
+        // A segment or point on the rim's own faces is the rim itself (the prism's points at the rim), not a
+        // landing: coasting it would feed the rim a longer interval each round and creep along the edge. A
+        // landing with area on them (the command turning the robot back onto a face) is coasted.
+        std::vector<FlightHit> rim, landings;
+        for (FlightHit& h : fly(r_, src, cone_)) {
+          const bool own = std::find(edge.faces.begin(), edge.faces.end(), h.face) != edge.faces.end();
+          (own && h.region.is_empty() && on_edge_line(h, edge) ? rim : landings).push_back(std::move(h));
+        }
+        absorb(rim, edge.faces, sector);
+        absorb(landings, {}, sector);
       }
     }
+  }
+
+  // Every point of a lower-dimensional hit lies on the edge's line (within kRimLineRelativeTolerance of the
+  // scene scale).
+  bool on_edge_line(const FlightHit& h, const Edge& edge) const {
+    const Vec3 d = (edge.b - edge.a).normalized();
+    for (const Point2& p : h.lower) {
+      const Vec3 q = r_.charts[h.face].lift_double(p) - edge.a;
+      if ((q - q.dot(d) * d).norm() > kRimLineRelativeTolerance * c_.scale()) return false;
+    }
+    return true;
   }
 
   // The sweep wedge of face fi holds the tangential part of every cone velocity (so a face that is swept, not

@@ -595,7 +595,7 @@ Region extruded_across_slab(const Region& r) {
 
 }  // namespace
 
-ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or_spatial) {
+ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or_spatial, bool partial) {
   const Region region = lt.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
   const CSpace& c = lt.cspace;
   const double tol = lt.surface_tolerance();
@@ -604,6 +604,7 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
   if (region.kind == Region::Kind::kPoint) {
     const Vec3& p = region.points.at(0);
     const int id = c.nearest_atom(p, tol);
+    if (id < 0 && partial) return rs;
     if (id < 0) throw TaskError(lt.task.source_file, region.key, "the point is not on the contact surface");
     switch (c.atom_kind(id)) {
       case AtomKind::kFace:
@@ -650,6 +651,7 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
     }
     rs.add_boundary_closure();
   }
+  if (partial) return rs;
   // Every sample of the region must be near a located atom.
   for (const Vec3& s : region_samples(region, 8)) {
     const int id = c.nearest_atom(s, tol);
@@ -664,9 +666,9 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
   return rs;
 }
 
-ReachedSet ReachedSet::from_regions(const LoadedTask& lt, const std::vector<Region>& regions) {
+ReachedSet ReachedSet::from_regions(const LoadedTask& lt, const std::vector<Region>& regions, bool partial) {
   ReachedSet rs(lt.cspace);
-  for (const Region& r : regions) rs.unite(from_region(lt, r));
+  for (const Region& r : regions) rs.unite(from_region(lt, r, partial));
   return rs;
 }
 

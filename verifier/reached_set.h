@@ -53,9 +53,11 @@ class ReachedSet {
   // face whose plane holds it and, for a segment, to every edge whose line holds it. The closure is added
   // (edge intervals and vertices covered by the face parts). In a planar task a region stands for its
   // extrusion across the y slab (a point becomes a segment along y, a segment a rectangle). Throws TaskError
-  // when a region sample is on no located piece.
-  static ReachedSet from_region(const LoadedTask& task, const Region& region);
-  static ReachedSet from_regions(const LoadedTask& task, const std::vector<Region>& regions);
+  // when a region sample is on no located piece. With `partial`, the located part alone, possibly empty (a
+  // goal in a slice of a task with model error may leave the surface: load_task_slice).
+  static ReachedSet from_region(const LoadedTask& task, const Region& region, bool partial = false);
+  static ReachedSet from_regions(const LoadedTask& task, const std::vector<Region>& regions,
+                                 bool partial = false);
   // The inverse of pieces(), for sets stored as pieces (JSON): face pieces of 3+ points are regions (outer
   // boundary minus holes; where rounding to doubles broke a ring, a superset: the outer boundary's convex
   // hull, the hole not subtracted), of 2 or 1 points segments and points; an edge piece's ends become
@@ -92,6 +94,10 @@ class ReachedSet {
   // edge end inside the box); vertices are removed by a double comparison, so callers pass a box already
   // shrunk by a margin above rounding.
   ReachedSet without_box(const AxisBox& box) const;
+  // The intersection with another set on the same C-space: face regions by their overlay on the grid (its
+  // crossings rounded to the nearest grid point), face segments clipped exactly to the other set's region
+  // pieces and segments, points by exact membership, edge intervals and vertices exactly.
+  ReachedSet intersected(const ReachedSet& other) const;
 
   bool empty() const;
   bool contains_atom(int atom_id) const;

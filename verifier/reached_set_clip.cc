@@ -177,4 +177,65 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
   return out;
 }
 
+namespace {
+
+// The part of segment [a, b] in the closed face set `other` (its region's convex pieces, its segments where
+// collinear and overlapping, its points on the segment), added to `out`'s face fi.
+void intersect_segment(const fp::FaceSet& other, int fi, const Point2& a, const Point2& b,
+                       ReachedSet::Impl& out) {
+  const fp::Segment2 seg(a, b);
+  if (!other.region.is_empty())
+    for (const Points2& piece : fp::convex_pieces(other.region)) {
+      FT t0, t1;
+      if (fp::clip_segment(piece, a, b, &t0, &t1)) out.add_segment(fi, a + t0 * (b - a), a + t1 * (b - a));
+    }
+  for (const fp::Segment2& o : other.segments) {
+    const auto x = CGAL::intersection(seg, o);
+    if (!x) continue;
+    if (const Point2* p = boost::get<Point2>(&*x)) out.add_point(fi, *p);
+    if (const fp::Segment2* q = boost::get<fp::Segment2>(&*x)) out.add_segment(fi, q->source(), q->target());
+  }
+  for (const Point2& p : other.points)
+    if (seg.has_on(p)) out.add_point(fi, p);
+}
+
+}  // namespace
+
+ReachedSet ReachedSet::intersected(const ReachedSet& other) const {
+  const Impl& a = *impl_;
+  const Impl& b = *other.impl_;
+  ReachedSet out(cspace());
+  Impl& o = *out.impl_;
+  for (std::size_t fi = 0; fi < a.faces.size(); ++fi) {
+    const fp::FaceSet& fa = a.faces[fi];
+    const fp::FaceSet& fb = b.faces[fi];
+    if (fa.empty() || fb.empty()) continue;
+    const int f = static_cast<int>(fi);
+    if (!fa.region.is_empty() && !fb.region.is_empty()) {
+      ChartRegion part = fa.region;
+      part.intersection(fb.region);
+      if (!part.is_empty()) o.add_region(f, part, nullptr);
+    }
+    // Segments and points of each set against the whole of the other (regions, segments, points).
+    for (const fp::Segment2& seg : fa.segments) intersect_segment(fb, f, seg.source(), seg.target(), o);
+    for (const fp::Segment2& seg : fb.segments) {
+      fp::FaceSet region_only;
+      region_only.region = fa.region;
+      intersect_segment(region_only, f, seg.source(), seg.target(), o);
+    }
+    for (const Point2& p : fa.points)
+      if (b.covered(f, p)) o.add_point(f, p);
+    for (const Point2& p : fb.points)
+      if (!fa.region.is_empty() && fa.region.oriented_side(p) != CGAL::ON_NEGATIVE_SIDE) o.add_point(f, p);
+  }
+  for (std::size_t ei = 0; ei < a.edges.size(); ++ei)
+    for (const EdgeInterval& x : a.edges[ei])
+      for (const EdgeInterval& y : b.edges[ei]) {
+        const double t0 = std::max(x.t0, y.t0), t1 = std::min(x.t1, y.t1);
+        if (t0 <= t1) o.add_interval(static_cast<int>(ei), t0, t1, nullptr);
+      }
+  for (std::size_t vi = 0; vi < a.vertices.size(); ++vi) o.vertices[vi] = a.vertices[vi] && b.vertices[vi];
+  return out;
+}
+
 }  // namespace cmt

@@ -10,34 +10,6 @@
 namespace cmt {
 namespace {
 
-// Closest distance between segments [p0, p1] and [q0, q1] (Ericson, Real-Time Collision Detection §5.1.9).
-double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 0 && e <= 0) return r.norm();
-  if (a <= 0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return ((p0 + s * d1) - (q0 + t * d2)).norm();
-}
-
 // Does segment [a, b] cross the convex polygon (counter-clockwise about n)?
 bool segment_crosses_polygon(const Vec3& a, const Vec3& b, const std::vector<Vec3>& poly, const Vec3& n) {
   const double da = n.dot(a - poly[0]), db = n.dot(b - poly[0]);
@@ -59,7 +31,7 @@ double convex_distance(const std::vector<Vec3>& A, const Vec3& na, const std::ve
   };
   double best = std::numeric_limits<double>::infinity();
   for (const auto& [a0, a1] : sides(A))
-    for (const auto& [b0, b1] : sides(B)) best = std::min(best, segment_segment_distance(a0, a1, b0, b1));
+    for (const auto& [b0, b1] : sides(B)) best = std::min(best, distance_between_segments(a0, a1, b0, b1));
   if (B.size() >= 3)
     for (const Vec3& p : A) best = std::min(best, distance_to_convex_polygon(p, B, nb));
   if (A.size() >= 3)
@@ -117,9 +89,12 @@ double atom_distance(const CSpace& cspace, int a, int b) {
 }
 
 double force_angle_lower_bound(const CSpace& cspace, int a, int b) {
+  return force_angle_lower_bound(atom_friction_cone(cspace, a), atom_friction_cone(cspace, b));
+}
+
+double force_angle_lower_bound(const FrictionCone& ca, const FrictionCone& cb) {
   // Smallest angle between two convex cones, if disjoint, is attained at an extreme ray of one of them
   // (spherical convex polygons); the outer cones' rays bound it from below.
-  const FrictionCone ca = atom_friction_cone(cspace, a), cb = atom_friction_cone(cspace, b);
   if (ca.is_full(/*outer=*/true) || cb.is_full(/*outer=*/true)) return 0;
   double best = std::numeric_limits<double>::infinity();
   for (const Vec3& r : ca.rays(/*outer=*/true)) best = std::min(best, cb.angle_lower_bound(r));

@@ -20,6 +20,8 @@ double atom_distance(const CSpace& cspace, int atom_a, int atom_b);
 // A lower bound on the smallest angle between a reaction force of atom a and one of atom b (0 if the cones
 // may meet). Uses the outer cones, so "larger than x" is certain.
 double force_angle_lower_bound(const CSpace& cspace, int atom_a, int atom_b);
+// The same for two cones (of atoms in different C-spaces, e.g. two slices of a task with model error).
+double force_angle_lower_bound(const FrictionCone& a, const FrictionCone& b);
 
 // Def 6.1: two atoms are disambiguable when their closest points are more than 2 eps_s apart or their closest
 // reaction forces differ by more than 2 theta_f. Atoms sharing a face are never force-disambiguable (§6.4.1).

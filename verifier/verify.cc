@@ -172,7 +172,7 @@ class StrategyVerifier {
 }  // namespace
 
 std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& lt, const ReachedSet& final_set) {
-  return final_set.pieces_outside(ReachedSet::from_regions(lt, lt.task.goal),
+  return final_set.pieces_outside(ReachedSet::from_regions(lt, lt.task.goal, /*partial=*/true),
                                   kGoalRelativeTolerance * lt.cspace.scale());
 }
 

@@ -30,5 +30,6 @@ void add_falsify_command(CLI::App& app, CommandState& state);
 void add_teach_command(CLI::App& app, CommandState& state);
 void add_plan_command(CLI::App& app, CommandState& state);
 void add_backproject_command(CLI::App& app, CommandState& state);
+void add_edr_command(CLI::App& app, CommandState& state);
 
 }  // namespace cmt

@@ -215,12 +215,29 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
   return runs;
 }
 
+// `cmt edr --json` objects (an object with edr_reliable and slices).
+std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::path>& files) {
+  std::vector<nlohmann::json> runs;
+  for (const std::filesystem::path& f : files) {
+    std::ifstream in(f);
+    if (!in) throw TaskError(f.string(), "", "cannot open the EDR result");
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("edr_reliable") || !j.contains("slices"))
+      throw TaskError(f.string(), "",
+                      "not a `cmt edr --json` result (an object with edr_reliable and slices)");
+    runs.push_back(std::move(j));
+  }
+  return runs;
+}
+
 }  // namespace
 
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
                            const StickClassOf& stick_class, const CounterexampleReplay& replay,
-                           const std::vector<std::filesystem::path>& teach_results) {
+                           const std::vector<std::filesystem::path>& teach_results,
+                           const std::vector<std::filesystem::path>& edr_results) {
   const std::vector<TeachingRun> teaching = read_teaching_runs(teach_results, out_dir);
+  const std::vector<nlohmann::json> edr = read_edr_runs(edr_results);
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
   ReportBuilder builder(db, out_dir, stick_class, replay);
@@ -232,6 +249,7 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   }
   ReportContent content = build_report_content(db, std::move(sections));
   content.teaching = teaching_table(teaching);
+  content.edr = edr_table(edr);
   summary.configs = static_cast<int>(db.configs.size());
   summary.figures = static_cast<int>(builder.figures().size());
   summary.index = out_dir / "index.html";

@@ -142,6 +142,19 @@ void md_teaching(std::ostream& md, const Table& t) {
   md_table(md, t);
 }
 
+constexpr const char* kEdrTitle = "Error detection and recovery";
+constexpr const char* kEdrIntro =
+    "Per strategy of a task with model error (cmt edr, Donald 1987; docs/edr.md): whether it is EDR-reliable "
+    "(every slice terminates, the goal is reached in some slice, and no termination in the goal is "
+    "confusable with a failure termination H of any slice), and per slice of the model parameters the "
+    "area where it may end in the goal and in H.";
+
+void md_edr(std::ostream& md, const Table& t) {
+  if (t.rows.empty()) return;
+  md << "## " << kEdrTitle << "\n\n" << kEdrIntro << "\n\n";
+  md_table(md, t);
+}
+
 void md_section(std::ostream& md, const ConfigSection& s) {
   md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
   if (!s.view_page.empty()) md << "[3-D view](" << s.view_page << ")\n\n";
@@ -242,6 +255,13 @@ void html_teaching(std::ostream& h, const Table& t) {
   html_rows(h, t);
 }
 
+void html_edr(std::ostream& h, const Table& t) {
+  if (t.rows.empty()) return;
+  h << "<h2 id=\"edr\">" << kEdrTitle << "</h2>\n<p>" << html_escape(kEdrIntro)
+    << "</p>\n<table class=\"edr\">\n";
+  html_rows(h, t);
+}
+
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
   const ConfigSection& s = c.sections[i];
   h << "<section class=\"config\" id=\"" << section_anchor(*s.row) << "\">\n<h3>Config " << s.row->config_id
@@ -300,6 +320,7 @@ std::string render_markdown(const ReportContent& c) {
   md_table(md, c.table);
   md_falsify(md, c.falsify);
   md_teaching(md, c.teaching);
+  md_edr(md, c.edr);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -313,6 +334,7 @@ std::string render_html(const ReportContent& c) {
   html_overview(h, c.overview);
   html_falsify(h, c.falsify);
   html_teaching(h, c.teaching);
+  html_edr(h, c.edr);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

@@ -82,6 +82,8 @@ struct ReportContent {
   // "Teaching sessions": one row per `cmt teach --json` result given to `cmt report --teach`; no rows, no
   // section.
   Table teaching;
+  // "Error detection and recovery": one row per `cmt edr --json` result given to `cmt report --edr`.
+  Table edr;
   std::vector<ConfigSection> sections;
 };
 
@@ -121,6 +123,12 @@ struct TeachingRun {
   std::string view_link;  // the teaching session's 3-D page relative to the report, "" without one
 };
 Table teaching_table(const std::vector<TeachingRun>& runs);
+
+// ---- Error detection and recovery (edr_table.cc; docs/edr.md) ----
+
+// Per `cmt edr --json` object: task, strategy, the verdict and why not, per slice the goal's termination area
+// and H's, the confusable pairs found, seconds.
+Table edr_table(const std::vector<nlohmann::json>& runs);
 // The configuration's note on its search ("" without one): rollouts, ends outside, the farthest one's
 // replay command.
 std::string falsify_note(const ConfigRow& row);

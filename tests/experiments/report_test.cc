@@ -978,4 +978,45 @@ TEST(Report, TeachingSessionsSectionListsABackprojection) {
       << md;
 }
 
+TEST(Report, EdrSectionListsSlicesAndTheCheck) {
+  const json edr = {{"task", "step_offset"},
+                    {"strategy", "edr"},
+                    {"edr_reliable", true},
+                    {"reason", ""},
+                    {"confusion_count", 0},
+                    {"seconds", 12.5},
+                    {"slices",
+                     {{{"params", {{"alpha", -1.0}}},
+                       {"terminates", true},
+                       {"goal_empty", true},
+                       {"success_area", 0.0},
+                       {"failure_area", 2.5}},
+                      {{"params", {{"alpha", 0.5}}},
+                       {"terminates", true},
+                       {"goal_empty", false},
+                       {"success_area", 0.75},
+                       {"failure_area", 0.0}}}},
+                    {"check",
+                     {{"rollouts", 20},
+                      {"worlds", json::array({json::object(), json::object()})},
+                      {"outcomes",
+                       {{"success", 9},
+                        {"failure_signalled", 11},
+                        {"false_success", 0},
+                        {"false_failure", 0},
+                        {"missed_success", 0},
+                        {"timeout", 0}}}}}};
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  content.edr = cmt::report::edr_table({edr});
+  const std::string md = cmt::report::render_markdown(content);
+  EXPECT_NE(md.find("## Error detection and recovery"), std::string::npos) << md;
+  EXPECT_NE(
+      md.find("| step_offset | edr | yes |  | alpha=-1: no goal, H 2.5; alpha=0.5: goal 0.75, H 0 | 0 | 20 "
+              "rollouts in 2 worlds: success 9, failure signalled 11, false success 0, false failure 0, "
+              "missed success 0, time-out 0 | 12.5 |"),
+      std::string::npos)
+      << md;
+}
+
 }  // namespace

@@ -1,0 +1,58 @@
+// The physics check of an EDR strategy (docs/edr.md "Physics check"): MuJoCo rollouts in worlds whose model
+// parameters are drawn uniformly over their whole intervals (not only at the verifier's slices), each world's
+// scene built from the task read at those values, the strategy run under the usual sampled bounded errors,
+// and every rollout's end classified by the EDR termination predicate against what happened:
+//  - success: the predicate signals success and the robot is in the world's goal;
+//  - failure_signalled: it signals failure and the robot is not in the goal;
+//  - false_success (forbidden): success signalled, not in the goal;
+//  - false_failure (forbidden): failure signalled in a world where the verifier guarantees success (its slice
+//    is reliable: every termination lies in the goal);
+//  - missed_success: failure signalled although the robot is in the goal of a world without that guarantee
+//    (allowed by Donald's axioms only where success is not recognizable; a slicing gap when the verifier's
+//    slices say every termination in the goal is recognized);
+//  - timeout: a motion did not terminate; unstable: the simulation broke (not classified).
+// The predicate (the robot's own test after the last motion): a fresh sensing draw (position offset within
+// eps_s, force direction turned by up to theta_f; on the bounds in extreme mode) is consistent with a
+// termination in the goal of some slice of the verifier's result: within eps_s of one of its pieces (a face
+// region as the hull of its outline) with the sensed force within theta_f of that atom's friction cone.
+#pragma once
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "controllers/error_model.h"
+#include "models/loaded_task.h"
+#include "verifier/edr/edr.h"
+
+namespace cmt {
+
+struct EdrCheckOptions {
+  int worlds = 100;  // worlds drawn over the model parameters' intervals
+  int rollouts_per_world = 10;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  SampleMode mode = SampleMode::kExtreme;
+};
+
+struct EdrCheckOutcome {
+  std::vector<double> values;  // the world's model parameters
+  int world = -1, index = -1;  // rollout `index` of world `world` (seed EdrCheckOptions::seed + world)
+  std::string outcome;
+  Vec3 end = Vec3::Zero();
+};
+
+struct EdrCheck {
+  int rollouts = 0, success = 0, failure_signalled = 0, false_success = 0, false_failure = 0,
+      missed_success = 0, timeout = 0, unstable = 0;
+  std::vector<EdrCheckOutcome> forbidden;  // false successes and false failures (at most 50)
+  std::vector<EdrCheckOutcome> missed;     // missed successes (at most 50)
+  // Per world: its values, whether its slice is reliable, and its outcome counts (the report's plot).
+  nlohmann::json worlds = nlohmann::json::array();
+};
+
+EdrCheck check_edr(const Task& task, const std::vector<std::string>& motions, const EdrResult& verdict,
+                   const EdrCheckOptions& options);
+nlohmann::json edr_check_json(const Task& task, const EdrCheck& check);
+
+}  // namespace cmt

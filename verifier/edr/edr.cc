@@ -1,0 +1,129 @@
+#include "verifier/edr/edr.h"
+
+#include <algorithm>
+
+#include "models/task_error.h"
+#include "verifier/atom_cone.h"
+#include "verifier/backprojection.h"
+
+namespace cmt {
+namespace {
+
+// Why the motions may fail to terminate in a slice ("" when they terminate): EDR needs every motion to end.
+std::string termination_failure(const VerifyResult& result, std::size_t motions) {
+  for (const VerifyStep& step : result.steps) {
+    if (step.may_not_terminate)
+      return "motion '" + step.motion + "' may never terminate: no reached atom can stick";
+    if (!step.slide_forever.empty()) return "motion '" + step.motion + "' may slide forever";
+    if (step.fallback) return "motion '" + step.motion + "': the forward projection fell back to every atom";
+    if (step.free_termination)
+      return "motion '" + step.motion + "' may come to rest in free space (no contact to sense)";
+  }
+  if (result.steps.size() < motions) return result.failure;
+  return "";
+}
+
+void add_preimages(const LoadedTask& lt, const ReachedSet& goal, const Motion& motion,
+                   const EdrOptions& options, EdrSlice* s) {
+  if (motion.kind != Motion::Kind::kDamper) return;
+  const AtomCones cones(lt.cspace);
+  const DamperBackprojection strong = backproject_damper(
+      lt, cones, goal, motion.target, s->options.stop_relative_speed, options.backprojection_margin(lt));
+  const WeakBackprojection weak = weak_backproject_damper(lt, cones, goal, motion.target);
+  s->strong = strong.strong.intersected(*s->reached);
+  s->weak = weak.weak.intersected(*s->reached);
+  s->failure_sticking_area =
+      ReachedSet::from_pieces(lt.cspace, s->failure_pieces).intersected(*s->weak).area();
+}
+
+std::string slice_text(const Task& task, const std::vector<double>& values) {
+  std::string at;
+  for (std::size_t p = 0; p < values.size(); ++p)
+    at += (at.empty() ? "" : ", ") + task.model_error[p].name + " = " + std::to_string(values[p]);
+  return at;
+}
+
+EdrSlice simulate_slice(const Task& task, const std::vector<std::string>& motions,
+                        const std::vector<double>& values, const EdrOptions& options) {
+  EdrSlice s;
+  s.values = values;
+  s.task = load_task_slice(task, values);
+  const LoadedTask& lt = *s.task;
+  const ReachedSet goal = ReachedSet::from_regions(lt, lt.task.goal, /*partial=*/true);
+  s.goal_empty = goal.empty();
+  s.options = options.verify(lt);
+  const VerifyResult result = verify_motions(lt, motions, s.options);
+  s.termination_problem = termination_failure(result, motions.size());
+  s.terminates = s.termination_problem.empty();
+  if (!s.terminates) return s;
+  const VerifyStep& last = result.steps.back();
+  s.reliable = result.reliable;
+  s.reached = last.reached;
+  s.termination = std::make_shared<const ReachedSet>(last.termination);
+  s.success = std::make_shared<const ReachedSet>(last.termination.intersected(goal));
+  s.failure_pieces = pieces_outside_goal(lt, last.termination);
+  for (const ReachedPiece& p : s.failure_pieces) s.failure_area += p.area;
+  add_preimages(lt, goal, *lt.task.find_motion(motions.back()), options, &s);
+  return s;
+}
+
+// A slice's errors name it (the geometry at those values, its start, its motions).
+EdrSlice run_slice(const Task& task, const std::vector<std::string>& motions,
+                   const std::vector<double>& values, const EdrOptions& options) {
+  try {
+    return simulate_slice(task, motions, values, options);
+  } catch (const TaskError& e) {
+    throw TaskError(e.file(), e.key(), "in the slice " + slice_text(task, values) + ": " + e.reason());
+  }
+}
+
+// (c): every termination in G against every point of H, over all pairs of slices. Every pair is tested (the
+// per-slice flags need them all); the first confusion_limit confusable pairs are listed.
+void check_distinguishable(const Task& task, const EdrOptions& options, EdrResult* out) {
+  std::vector<SlicePiece> success, failure;
+  double scale = 0;
+  for (std::size_t i = 0; i < out->slices.size(); ++i) {
+    const EdrSlice& s = out->slices[i];
+    scale = std::max(scale, s.task->cspace.scale());
+    if (!s.success) continue;
+    for (ReachedPiece& p : s.success->pieces()) success.push_back({&s.task->cspace, static_cast<int>(i), p});
+    for (const ReachedPiece& p : s.failure_pieces)
+      failure.push_back({&s.task->cspace, static_cast<int>(i), p});
+  }
+  const std::vector<Confusion> pairs = confusable_pairs(
+      success, failure, task.uncertainty.eps_s, task.uncertainty.theta_f, kEdrPositionRelativeMargin * scale);
+  out->distinguishable = pairs.empty();
+  out->confusion_count = static_cast<int>(pairs.size());
+  for (const Confusion& c : pairs) {
+    out->slices[success[c.a].slice].distinguishable = false;
+    out->slices[failure[c.b].slice].distinguishable = false;
+    if (out->confusions.size() < options.confusion_limit)
+      out->confusions.push_back({success[c.a].slice, failure[c.b].slice, success[c.a].piece,
+                                 failure[c.b].piece, c.distance, c.force_angle});
+  }
+}
+
+}  // namespace
+
+EdrResult verify_edr(const Task& task, const std::vector<std::string>& motions,
+                     const std::vector<std::vector<double>>& slices, const EdrOptions& options) {
+  EdrResult out;
+  for (const std::vector<double>& values : slices)
+    out.slices.push_back(run_slice(task, motions, values, options));
+  for (const EdrSlice& s : out.slices) {
+    out.terminates = out.terminates && s.terminates;
+    out.reaches_goal = out.reaches_goal || (s.success && !s.success->empty());
+  }
+  if (!out.terminates) {
+    out.reason = "the motions may not terminate in some slice";
+    return out;
+  }
+  if (!out.reaches_goal) out.reason = "no slice's termination set meets the goal";
+  check_distinguishable(task, options, &out);
+  if (out.reaches_goal && !out.distinguishable)
+    out.reason = "a termination in the goal is confusable with a failure termination (H)";
+  out.edr_reliable = out.reaches_goal && out.distinguishable;
+  return out;
+}
+
+}  // namespace cmt
