@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <regex>
 #include <stdexcept>
 
 #include "models/task.h"
@@ -94,8 +95,10 @@ AffineValue parse_affine(const std::string& text, const std::vector<ModelParamet
       const char c = text[i];
       if (c == '+' || c == '-') {
         const std::string t = trim(term);
-        const bool exponent = t.size() >= 2 && (t.back() == 'e' || t.back() == 'E') &&
-                              std::isdigit(static_cast<unsigned char>(t[t.size() - 2]));
+        // The factor being read (after the last '*'): a number's mantissa followed by e or E.
+        const std::string factor =
+            trim(t.substr(t.find_last_of('*') == std::string::npos ? 0 : t.find_last_of('*') + 1));
+        const bool exponent = std::regex_match(factor, std::regex("([0-9]+\\.?[0-9]*|\\.[0-9]+)[eE]"));
         const bool after_star = !t.empty() && t.back() == '*';
         if (!exponent && !after_star) break;
       }

@@ -24,8 +24,9 @@ Task parse_task_file(const std::filesystem::path& path);
 // reads it at the nominal values.
 Task parse_task_string(const std::string& yaml_text, const std::string& file_label,
                        const std::vector<double>* model_values = nullptr);
-// The task read again at other model values (a slice of C x J, models/model_error.h); TaskError when a value
-// is outside its interval or the geometry there is not accepted (a part degenerates).
+// The task read again at other model values (a slice of C x J, models/model_error.h) from its file text
+// (Task::model_source): changes made to `task` in memory after loading are not carried over. TaskError when a
+// value is outside its interval or the geometry there is not accepted (a part degenerates).
 Task task_at(const Task& task, const std::vector<double>& model_values);
 
 }  // namespace cmt

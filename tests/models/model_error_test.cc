@@ -56,6 +56,10 @@ TEST(ModelError, ParsesAffineExpressions) {
   EXPECT_DOUBLE_EQ(parse_affine("w*3 - d", params).at({1, 2}), 1);
   EXPECT_DOUBLE_EQ(parse_affine("1e-1 + w", params).at({0.2, 0}), 0.3);
   EXPECT_DOUBLE_EQ(parse_affine("2*-w", params).at({1, 0}), -2);
+  EXPECT_DOUBLE_EQ(parse_affine("2.e-3*w + 1E+1", params).at({1000, 0}), 12);
+  EXPECT_DOUBLE_EQ(parse_affine(".5e1 - d", params).at({0, 1}), 4);
+  const std::vector<ModelParameter> named = {{"w2e", 0, 1, 0.5}};
+  EXPECT_DOUBLE_EQ(parse_affine("w2e-1", named).at({3}), 2);  // a name ending in "2e" is not a mantissa
   EXPECT_DOUBLE_EQ(parse_affine(" -w ", params).at({0.25, 0}), -0.25);
   EXPECT_THROW(parse_affine("w + x", params), std::invalid_argument);
   EXPECT_THROW(parse_affine("w + ", params), std::invalid_argument);
