@@ -1,7 +1,9 @@
 #include "models/loaded_task.h"
 
+#include <cmath>
 #include <sstream>
 
+#include "models/polygon_distance.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
 #include "models/task_ranges.h"
@@ -23,15 +25,48 @@ void check_on_surface(const LoadedTask& lt, const Region& region) {
   }
 }
 
-std::shared_ptr<const LoadedTask> finish(Task task, bool goal_on_surface = true) {
+// With model error the goal is the part of its regions on the contact surface in each world (it may vanish
+// in some, Donald l.867): at the nominal values some of it must be there. As the verifier locates a partial
+// goal (ReachedSet::from_region): a point on some atom; a segment or polygon on a face whose plane holds it
+// whole.
+bool partly_on_surface(const LoadedTask& lt, const Region& region) {
+  const double tol = lt.surface_tolerance();
+  if (region.kind == Region::Kind::kPoint) return lt.cspace.distance_to_surface(region.points[0]) <= tol;
+  for (const Face& f : lt.cspace.faces()) {
+    bool in_plane = true;
+    for (const Vec3& p : region.points) in_plane = in_plane && std::abs(f.normal.dot(p) - f.offset) <= tol;
+    if (!in_plane) continue;
+    for (const Vec3& p : region_samples(region))
+      if (distance_to_convex_polygon(p, f.polygon, f.normal) <= tol) return true;
+  }
+  return false;
+}
+
+void check_partly_on_surface(const LoadedTask& lt, const std::vector<Region>& goal) {
+  for (const Region& g : goal)
+    if (partly_on_surface(lt, g)) return;
+  throw TaskError(lt.task.source_file, goal.front().key,
+                  "the goal is nowhere on the contact surface at the model parameters' nominal values");
+}
+
+enum class GoalCheck { kOnSurface, kPartly, kNone };
+
+std::shared_ptr<const LoadedTask> finish(Task task, GoalCheck goal_check) {
   apply_scene_defaults(task);
   check_task_ranges(task);
   CSpace cspace = CSpace::build(task);
   auto loaded = std::make_shared<LoadedTask>(LoadedTask{std::move(task), std::move(cspace)});
   check_on_surface(*loaded, loaded->task.start);
-  if (goal_on_surface)
+  if (goal_check == GoalCheck::kOnSurface)
     for (const Region& g : loaded->task.goal) check_on_surface(*loaded, g);
+  if (goal_check == GoalCheck::kPartly && !loaded->task.goal.empty())
+    check_partly_on_surface(*loaded, loaded->task.goal);
   return loaded;
+}
+
+std::shared_ptr<const LoadedTask> finish(Task task) {
+  const GoalCheck check = task.model_error.empty() ? GoalCheck::kOnSurface : GoalCheck::kPartly;
+  return finish(std::move(task), check);
 }
 
 }  // namespace
@@ -59,7 +94,7 @@ std::vector<Vec3> region_samples(const Region& region, int per_side) {
 std::shared_ptr<const LoadedTask> load_task_from_task(Task task) { return finish(std::move(task)); }
 
 std::shared_ptr<const LoadedTask> load_task_slice(const Task& task, const std::vector<double>& model_values) {
-  return finish(task_at(task, model_values), /*goal_on_surface=*/false);
+  return finish(task_at(task, model_values), GoalCheck::kNone);
 }
 
 std::shared_ptr<const LoadedTask> load_task(const std::filesystem::path& path) {

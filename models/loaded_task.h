@@ -1,6 +1,8 @@
 // A task together with its configuration space: what every command works on. Loading checks the schema
 // (task_loader.h) and then what needs the C-space: start and goal regions must lie on the contact surface and
-// the free space must not be empty. Nothing is half-loaded: either both parts exist or TaskError is thrown.
+// the free space must not be empty. With model error the goal is the part of its regions on the surface in
+// each world (it may vanish in some, Donald l.867): at the nominal values some of it must lie there. Nothing
+// is half-loaded: either both parts exist or TaskError is thrown.
 #pragma once
 
 #include <filesystem>

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace cmt {
 
@@ -64,6 +66,47 @@ double distance_between_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0,
     }
   }
   return ((p0 + s * d1) - (q0 + t * d2)).norm();
+}
+
+namespace {
+
+double point_to_convex_set(const Vec3& p, const std::vector<Vec3>& s, const Vec3& n) {
+  if (s.size() == 1) return (p - s[0]).norm();
+  if (s.size() == 2) return distance_to_segment(p, s[0], s[1]);
+  return distance_to_convex_polygon(p, s, n);
+}
+
+std::vector<std::pair<Vec3, Vec3>> boundary_edges(const std::vector<Vec3>& s) {
+  std::vector<std::pair<Vec3, Vec3>> out;
+  if (s.size() == 2) out.emplace_back(s[0], s[1]);
+  if (s.size() >= 3)
+    for (std::size_t i = 0; i < s.size(); ++i) out.emplace_back(s[i], s[(i + 1) % s.size()]);
+  return out;
+}
+
+// The distance from the polygon to where segment [p, q] crosses its plane, +infinity when it does not.
+double segment_crossing(const Vec3& p, const Vec3& q, const std::vector<Vec3>& poly, const Vec3& n) {
+  const double sp = n.dot(p - poly[0]), sq = n.dot(q - poly[0]);
+  if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || sp == sq) return std::numeric_limits<double>::infinity();
+  return distance_to_convex_polygon(p + (sp / (sp - sq)) * (q - p), poly, n);
+}
+
+}  // namespace
+
+double distance_between_convex_sets(const std::vector<Vec3>& a, const Vec3& na, const std::vector<Vec3>& b,
+                                    const Vec3& nb) {
+  if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : a) best = std::min(best, point_to_convex_set(p, b, nb));
+  for (const Vec3& p : b) best = std::min(best, point_to_convex_set(p, a, na));
+  const auto ea = boundary_edges(a), eb = boundary_edges(b);
+  for (const auto& [p, q] : ea)
+    for (const auto& [r, s] : eb) best = std::min(best, distance_between_segments(p, q, r, s));
+  if (b.size() >= 3)
+    for (const auto& [p, q] : ea) best = std::min(best, segment_crossing(p, q, b, nb));
+  if (a.size() >= 3)
+    for (const auto& [p, q] : eb) best = std::min(best, segment_crossing(p, q, a, na));
+  return best;
 }
 
 }  // namespace cmt

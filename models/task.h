@@ -79,6 +79,11 @@ struct Motion {
   Kind kind = Kind::kDamper;
   Vec3 target = Vec3::Zero();   // damper: unit velocity direction; spring: commanded position
   MotionTermination terminate;  // optional sensing termination (types 2 and 3)
+  // The EDR termination predicate (Donald 1987 §1.5, 1EDR l.1858-1881): once the motion stops, the robot
+  // reports `success` when its sensed position and force are consistent with a termination in the goal of
+  // some model-error slice, `failure` otherwise (docs/edr.md). `cmt verify --edr` and `cmt validate --edr`
+  // read it from the strategy's last motion.
+  bool edr_signal = false;
 };
 
 // One branch of a conditional test (Buckley §4.2, Fig 4.2): after a motion the robot checks whether its

@@ -223,6 +223,13 @@ class Parser {
     return Vec3(coordinate(0), coordinate(1), coordinate(2));
   }
   // A direction (damper velocity, force cone axis), normalized.
+  // `edr: true`: the motion carries the EDR termination predicate (task.h Motion::edr_signal).
+  static bool parse_edr_signal(const Node& n) {
+    const std::string v = n.string();
+    if (v != "true" && v != "false") n.fail("expected true or false, got '" + v + "'");
+    return v == "true";
+  }
+
   Vec3 parse_direction(const Node& n, const std::string& what) const {
     Vec3 d = parse_vector(n);
     if (!(d.norm() >= kMinDirectionLength))
@@ -411,7 +418,7 @@ class Parser {
       const std::string name = kv.first.as<std::string>();
       const Node m(kv.second, n.child_path(name), &file_);
       if (!names.insert(name).second) m.fail("duplicated motion name");
-      m.require_map({"spring", "damper", "terminate"});
+      m.require_map({"spring", "damper", "terminate", "edr"});
       const auto defined = [&](const char* key) { return m.is_map() && m.raw()[key].IsDefined(); };
       if (defined("spring") == defined("damper")) m.fail("a motion is exactly one of spring, damper");
       Motion motion;
@@ -425,6 +432,7 @@ class Parser {
       }
       if (defined("terminate"))
         motion.terminate = parse_termination(Node(m.raw()["terminate"], m.child_path("terminate"), &file_));
+      if (defined("edr")) motion.edr_signal = parse_edr_signal(m.at("edr"));
       task.motions.push_back(motion);
     }
   }

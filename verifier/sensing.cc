@@ -8,41 +8,6 @@
 #include "verifier/atom_cone.h"
 
 namespace cmt {
-namespace {
-
-// Does segment [a, b] cross the convex polygon (counter-clockwise about n)?
-bool segment_crosses_polygon(const Vec3& a, const Vec3& b, const std::vector<Vec3>& poly, const Vec3& n) {
-  const double da = n.dot(a - poly[0]), db = n.dot(b - poly[0]);
-  if ((da > 0 && db > 0) || (da < 0 && db < 0) || da == db) return false;
-  const Vec3 x = a + (b - a) * (da / (da - db));
-  return distance_to_convex_polygon(x, poly, n) == 0;
-}
-
-// Distance between two convex atoms given as point lists (1 point, 2 points, or a polygon with its normal).
-double convex_distance(const std::vector<Vec3>& A, const Vec3& na, const std::vector<Vec3>& B,
-                       const Vec3& nb) {
-  auto sides = [](const std::vector<Vec3>& P) {
-    std::vector<std::pair<Vec3, Vec3>> s;
-    if (P.size() == 1) s.push_back({P[0], P[0]});
-    if (P.size() == 2) s.push_back({P[0], P[1]});
-    if (P.size() >= 3)
-      for (std::size_t i = 0; i < P.size(); ++i) s.push_back({P[i], P[(i + 1) % P.size()]});
-    return s;
-  };
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& [a0, a1] : sides(A))
-    for (const auto& [b0, b1] : sides(B)) best = std::min(best, distance_between_segments(a0, a1, b0, b1));
-  if (B.size() >= 3)
-    for (const Vec3& p : A) best = std::min(best, distance_to_convex_polygon(p, B, nb));
-  if (A.size() >= 3)
-    for (const Vec3& p : B) best = std::min(best, distance_to_convex_polygon(p, A, na));
-  if (B.size() >= 3)
-    for (const auto& [a0, a1] : sides(A))
-      if (segment_crosses_polygon(a0, a1, B, nb)) return 0;
-  return best;
-}
-
-}  // namespace
 
 Polyhedron sensed_positions(const CSpace& cspace, int atom_id, double eps_s) {
   const std::vector<Vec3> pts = atom_points(cspace, atom_id);
@@ -85,7 +50,7 @@ double atom_distance(const CSpace& cspace, int a, int b) {
   auto normal = [&](int id) {
     return cspace.atom_kind(id) == AtomKind::kFace ? cspace.faces()[id].normal : Vec3(Vec3::UnitZ());
   };
-  return convex_distance(atom_points(cspace, a), normal(a), atom_points(cspace, b), normal(b));
+  return distance_between_convex_sets(atom_points(cspace, a), normal(a), atom_points(cspace, b), normal(b));
 }
 
 double force_angle_lower_bound(const CSpace& cspace, int a, int b) {

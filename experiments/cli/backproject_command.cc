@@ -63,7 +63,8 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   // S keeps the rollouts' contact resolution from W: their contact lets the robot sink and rise by about the
   // contact lift, so a start closer to W than that may behave as one in it.
   const double margin = rollout_contact_lift(*task);
-  ReachedSet target = ReachedSet::from_regions(*task, task->task.goal);
+  // With model error the goal is its part on the surface (loaded_task.h).
+  ReachedSet target = ReachedSet::from_regions(*task, task->task.goal, !task->task.model_error.empty());
   nlohmann::json steps = nlohmann::json::array();
   std::vector<BackprojectionLayers> layers;
   bool fallback = false;

@@ -1,5 +1,10 @@
 #include "experiments/cli/rollout_cli.h"
 
+#include <cmath>
+#include <stdexcept>
+
+#include "models/task_error.h"
+
 namespace cmt {
 
 void add_rollout_sampling_options(CLI::App* cmd, int& n, std::uint64_t& seed, int& threads,
@@ -17,6 +22,54 @@ void add_rollout_sampling_options(CLI::App* cmd, int& n, std::uint64_t& seed, in
 void check_rollout_sampling_options(int n, int threads) {
   if (n <= 0) throw CLI::ValidationError("-n", "must be > 0, got " + std::to_string(n));
   if (threads < 0) throw CLI::ValidationError("--threads", "must be >= 0, got " + std::to_string(threads));
+}
+
+namespace {
+
+std::size_t parameter_index(const Task& task, const std::string& name) {
+  std::string names;
+  for (std::size_t p = 0; p < task.model_error.size(); ++p) {
+    if (task.model_error[p].name == name) return p;
+    names += (names.empty() ? "" : ", ") + task.model_error[p].name;
+  }
+  throw TaskError(task.source_file, "--world",
+                  "no model parameter '" + name + "' (the task's: " + (names.empty() ? "none" : names) + ")");
+}
+
+double parameter_value(const Task& task, const std::string& item, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw TaskError(task.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
+  return v;
+}
+
+}  // namespace
+
+std::shared_ptr<const LoadedTask> task_in_world(std::shared_ptr<const LoadedTask> task,
+                                                const std::vector<std::string>& world) {
+  if (world.empty()) return task;
+  const Task& t = task->task;
+  std::vector<double> values;
+  for (const ModelParameter& p : t.model_error) values.push_back(p.nominal);
+  for (const std::string& item : world) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos)
+      throw TaskError(t.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
+    const std::size_t p = parameter_index(t, item.substr(0, eq));
+    values[p] = parameter_value(t, item, item.substr(eq + 1));
+    const ModelParameter& m = t.model_error[p];
+    if (values[p] < m.min || values[p] > m.max)
+      throw TaskError(t.source_file, "--world",
+                      m.name + " = " + item.substr(eq + 1) + " is outside its interval [" +
+                          std::to_string(m.min) + ", " + std::to_string(m.max) + "]");
+  }
+  return load_task_slice(t, values);
 }
 
 }  // namespace cmt

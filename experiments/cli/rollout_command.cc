@@ -187,6 +187,7 @@ RolloutOutcome run_error_vector(std::shared_ptr<const RolloutScene> scene, const
 void add_rollout_command(CLI::App& app, CommandState& state) {
   struct Options {
     std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories, errors;
+    std::vector<std::string> world;
     int n = 100;
     std::uint64_t seed = 1;
     int threads = 0;
@@ -201,6 +202,11 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
          "controller form: admittance (Buckley eq. 3.23/3.24), impedance, or position (eq. 3.25, springs)")
       ->check(CLI::IsMember({"admittance", "impedance", "position"}))
       ->capture_default_str();
+  cmd->add_option(
+         "--world", o->world,
+         "NAME=VALUE (repeatable): run in the world with these model-error values (docs/task-format.md "
+         "\"model_error\"; others at their nominal values)")
+      ->allow_extra_args(false);
   cmd->add_option("--csv", o->csv, "also write one CSV row per rollout and motion to this file");
   cmd->add_option("--trajectories", o->trajectories,
                   "also record trajectories (every 10 steps) to this CSV file");
@@ -211,7 +217,7 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
   cmd->callback([o, &state] {
     if (!o->errors.empty()) o->n = 1;
     check_rollout_sampling_options(o->n, o->threads);
-    const auto task = load_task(o->task);
+    const auto task = task_in_world(load_task(o->task), o->world);
     const Strategy* strategy = &task->task.strategy_named(o->strategy);
     SimOptions options;
     options.form = *parse_controller_form(o->controller);

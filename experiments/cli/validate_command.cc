@@ -4,7 +4,8 @@
 // Exit 0 when physics agrees with the prediction, 1 when it contradicts it (an end outside the predicted set,
 // a failure of a strategy verified reliable, a stick/slide disagreement), 2 on bad input. The verifier runs
 // under the wall-clock limit T, as in `cmt verify`: past it the rollouts run without a prediction
-// (verifier_timed_out: true).
+// (verifier_timed_out: true). With --edr: an EDR strategy in worlds drawn over the model parameters
+// (validate_edr.h).
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
 #include "experiments/cli/rollout_cli.h"
+#include "experiments/cli/validate_edr.h"
 #include "experiments/cli/verify_command.h"
 #include "experiments/common/json_text.h"
 #include "experiments/validation/validation.h"
@@ -111,7 +113,8 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     int n = 1000, threads = 0, sticking_trials = 0, budget = ValidateOptions{}.counterexample_budget;
     double time_limit = kDefaultVerifyTimeLimit;
     std::uint64_t seed = 1;
-    bool ends = false;
+    bool ends = false, edr = false;
+    int per_world = ValidateEdrOptions{}.per_world, resolution = ValidateEdrOptions{}.resolution;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("validate", "Compare the verifier's prediction with MuJoCo rollouts");
@@ -136,9 +139,30 @@ void add_validate_command(CLI::App& app, CommandState& state) {
                       std::to_string(kDefaultVerifyTimeLimit) +
                       "); beyond, the rollouts run without a prediction (verifier_timed_out: true)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--edr", o->edr,
+                "error detection and recovery under model error (docs/edr.md): rollouts in worlds drawn over "
+                "the model parameters, each classified by the last motion's EDR termination predicate");
+  cmd->add_option("--per-world", o->per_world, "with --edr: rollouts per drawn world")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--resolution", o->resolution,
+                  "with --edr: the verifier's slices, evenly spaced values per model parameter (cmt edr)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
     check_rollout_sampling_options(o->n, o->threads);
+    const int threads =
+        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    if (o->edr) {
+      if (o->controller != "impedance")
+        throw CLI::ValidationError("--controller", "--edr runs the impedance form (the verifier's model)");
+      if (o->sticking_trials > 0 || o->ends)
+        throw CLI::ValidationError("--edr", "--sticking-trials and --ends are for a task's nominal world");
+      state.exit_status = validate_edr({o->task, o->strategy, o->n, o->per_world, o->resolution, threads,
+                                        o->seed, *parse_sample_mode(o->mode), state.json});
+      return;
+    }
     if (o->sticking_trials < 0)
       throw CLI::ValidationError("--sticking-trials",
                                  "must be >= 0, got " + std::to_string(o->sticking_trials));
@@ -150,8 +174,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     ValidateOptions options;
     options.n = o->n;
     options.seed = o->seed;
-    options.threads =
-        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    options.threads = threads;
     options.mode = *parse_sample_mode(o->mode);
     options.form = *parse_controller_form(o->controller);
     options.sticking_trials = o->sticking_trials;

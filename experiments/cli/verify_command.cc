@@ -10,6 +10,7 @@
 #include "experiments/cli/command.h"
 #include "experiments/common/json_text.h"
 #include "experiments/common/verifier_budget.h"
+#include "experiments/edr/edr_verdict.h"
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
 #include "models/task_error.h"
@@ -52,6 +53,61 @@ nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strat
           {"servo_coast", options.servo_coast}};
 }
 
+namespace {
+
+// The EDR verdict's JSON (edr_verdict.h) computed in a forked child under the wall-clock limit, with
+// `reliable` and `timed_out`; bad input found there (a slice the loader rejects) comes back as TaskError.
+nlohmann::json edr_verdict_within_time_limit(const LoadedTask& task, const EdrVerdictRequest& request,
+                                             double time_limit, std::chrono::steady_clock::time_point start) {
+  const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
+    nlohmann::json out;
+    try {
+      const EdrResult r = edr_verdict(task, request);
+      out = edr_verdict_json(task.task, request, r);
+      out["reliable"] = r.edr_reliable;
+      out["timed_out"] = false;
+    } catch (const TaskError& e) {
+      out = {{"task_error", {{"file", e.file()}, {"key", e.key()}, {"reason", e.reason()}}}};
+    }
+    phase_done();
+    return json_text(out);
+  });
+  nlohmann::json out;
+  if (run.timed_out) {
+    std::ostringstream reason;
+    reason << kVerifierTimedOut << " after " << time_limit << " s (--time-limit)";
+    out = {{"task", task.task.name}, {"strategy", request.strategy},
+           {"reliable", false},      {"edr_reliable", false},
+           {"timed_out", true},      {"time_limit", time_limit},
+           {"reason", reason.str()}, {"slices", nlohmann::json::array()}};
+  } else {
+    out = nlohmann::json::parse(run.payload);
+  }
+  if (out.contains("task_error")) {
+    const nlohmann::json& e = out["task_error"];
+    throw TaskError(e["file"], e["key"], e["reason"]);
+  }
+  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+// `cmt verify --edr`: the verdict's JSON or a summary; exit 0 when EDR-reliable, else 1.
+int print_edr_verdict(const EdrVerdictRequest& request, double time_limit, bool json) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto task = load_task_from_string(read_task_text(request.file), request.file);
+  const nlohmann::json out = edr_verdict_within_time_limit(*task, request, time_limit, start);
+  const bool reliable = out["edr_reliable"].get<bool>();
+  if (json)
+    print_json(out);
+  else
+    std::cout << task->task.name << ": "
+              << (reliable ? "EDR-reliable" : "NOT EDR-reliable: " + out["reason"].get<std::string>()) << " ("
+              << out["slices"].size() << " slices)\n";
+  return reliable ? kExitSuccess : kExitFailureFound;
+}
+
+}  // namespace
+
 void add_verify_command(CLI::App& app, CommandState& state) {
   struct Options {
     std::string task, strategy, motion;
@@ -61,6 +117,8 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
     double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
     double time_limit = kDefaultVerifyTimeLimit;
+    bool edr = false;
+    int resolution = EdrVerdictRequest{}.resolution;
   };
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
@@ -99,7 +157,30 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                       std::to_string(kDefaultVerifyTimeLimit) +
                       "); beyond, the answer is not reliable with timed_out: true (exit 1)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--edr", options->edr,
+                "the EDR verdict under model error (docs/edr.md; as cmt edr): the strategy's last motion "
+                "carries the EDR termination predicate (edr: true)");
+  cmd->add_option(
+         "--resolution", options->resolution,
+         "with --edr: evenly spaced values per model parameter (critical values and midpoints added)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   cmd->callback([options, &state] {
+    if (options->edr) {
+      if (options->strategy.empty()) throw CLI::ValidationError("--edr", "give --strategy NAME");
+      if (options->reached)
+        throw CLI::ValidationError("--reached", "not with --edr (the slices list their pieces)");
+      EdrVerdictRequest request;
+      request.file = options->task;
+      request.strategy = options->strategy;
+      request.resolution = options->resolution;
+      request.contact_lift = options->contact_lift;
+      request.servo_coast = options->servo_coast;
+      request.stop_relative_speed = options->stop_relative_speed;
+      request.require_signal = true;
+      state.exit_status = print_edr_verdict(request, options->time_limit, state.json);
+      return;
+    }
     const auto start = std::chrono::steady_clock::now();
     const auto task = load_task(options->task);
     Strategy strategy;

@@ -4,6 +4,10 @@
 // also failed_step, failure and outside_goal (the offending termination pieces). The verifier runs under a
 // wall-clock limit (--time-limit, default kDefaultVerifyTimeLimit): every answer has timed_out, and one that
 // ran out of time is not reliable, with timed_out true, time_limit, an empty steps list and exit status 1.
+// `cmt verify TASK --strategy NAME --edr [--resolution K] --json`: the EDR verdict over the task's
+// model-error slices (experiments/edr/edr_verdict.h, the fields of `cmt edr` and `reliable`); the strategy's
+// last motion carries `edr: true`. Also under --time-limit (past it: not reliable, timed_out true). Exit 0
+// EDR-reliable, 1 not, 2 bad input.
 #pragma once
 
 #include <chrono>

@@ -1,10 +1,15 @@
 // Rollouts of an EDR strategy in worlds drawn over the model parameters (edr_check.h).
 #include "experiments/edr/edr_check.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iomanip>
 #include <random>
+#include <sstream>
 
 #include "experiments/common/point_json.h"
+#include "experiments/validation/validation.h"
 #include "experiments/validation/verifier_model.h"
 #include "sim/rollout.h"
 #include "verifier/atom_cone.h"
@@ -13,10 +18,14 @@ namespace cmt {
 namespace {
 
 constexpr std::size_t kListed = 50;  // forbidden and missed outcomes listed in full
+constexpr const char* kEdrOutcomes[] = {"success",       "failure_signalled", "false_success",
+                                        "false_failure", "missed_success",    "timeout",
+                                        "unstable"};
 
-// The verifier's terminations in the goal over all slices, each with its atom's friction cone.
+// The verifier's terminations in the goal over all slices, each as a convex set with its atom's friction
+// cone.
 struct GoalPiece {
-  ReachedPiece piece;
+  ConvexPiece hull;
   FrictionCone cone;
 };
 
@@ -24,8 +33,8 @@ std::vector<GoalPiece> goal_terminations(const EdrResult& verdict) {
   std::vector<GoalPiece> out;
   for (const EdrSlice& s : verdict.slices) {
     if (!s.success) continue;
-    for (ReachedPiece& p : s.success->pieces())
-      out.push_back({p, atom_friction_cone(s.task->cspace, p.atom)});
+    for (const ReachedPiece& p : s.success->pieces())
+      out.push_back({convex_piece(p), atom_friction_cone(s.task->cspace, p.atom)});
   }
   return out;
 }
@@ -62,10 +71,8 @@ Reading read_sensors(const Vec3& end, const Vec3& force, const Uncertainty& u, S
 bool signals_success(const Reading& r, const std::vector<GoalPiece>& goal, const Uncertainty& u,
                      double margin) {
   if (r.force_direction.isZero()) return false;
-  ReachedPiece at;
-  at.polygon = {r.position};
   for (const GoalPiece& g : goal)
-    if (piece_distance_lower_bound(at, g.piece) <= u.eps_s + margin &&
+    if (point_to_piece(r.position, g.hull) <= u.eps_s + margin &&
         g.cone.angle_lower_bound(r.force_direction) <= u.theta_f)
       return true;
   return false;
@@ -78,68 +85,130 @@ std::vector<double> draw_world(const Task& task, std::mt19937_64& rng) {
   return values;
 }
 
+// ` --world NAME=VALUE` per parameter, at full precision (cmt rollout reads the task at those values).
+std::string world_flags(const Task& task, const std::vector<double>& values) {
+  std::ostringstream os;
+  os << std::setprecision(17);
+  for (std::size_t p = 0; p < values.size(); ++p)
+    os << " --world " << task.model_error[p].name << "=" << values[p];
+  return os.str();
+}
+
+// One world: its task, the verifier's prediction there and its rollouts.
+struct World {
+  int index = 0;
+  std::vector<double> values;
+  std::shared_ptr<const LoadedTask> task;
+  ValidationResult validation;  // prediction, rollouts, soundness and coverage
+  bool guaranteed = false;      // the world's verification is reliable: success must be signalled
+};
+
+World run_world(const Task& task, const Strategy& strategy, int index, std::vector<double> values,
+                int rollouts, const EdrCheckOptions& options) {
+  World w{index, std::move(values), nullptr, {}, false};
+  w.task = load_task_slice(task, w.values);
+  ValidationResult& v = w.validation;
+  v.task = task.name;
+  v.strategy = strategy.name;
+  v.options.seed = options.seed + static_cast<std::uint64_t>(index);
+  v.options.mode = options.mode;
+  v.prediction = verify_motions(*w.task, strategy.motions, rollout_verify_options(*w.task));
+  w.guaranteed = v.prediction.reliable;
+  SimOptions sim;
+  sim.form = ControllerForm::kImpedance;
+  sim.mode = options.mode;
+  v.rollouts =
+      run_rollouts(RolloutScene::build(w.task, sim), strategy, rollouts, v.options.seed, options.threads);
+  score_soundness(*w.task, &v);
+  score_coverage(*w.task, &v);
+  return w;
+}
+
+// The EDR outcome of one rollout (edr_check.h).
+std::string classify(const World& w, const RolloutOutcome& o, const std::vector<GoalPiece>& goal,
+                     double margin, const EdrCheckOptions& options) {
+  bool timed_out = o.motions.size() < w.validation.prediction.steps.size();
+  for (const MotionOutcome& m : o.motions) timed_out = timed_out || m.termination == Termination::kNone;
+  if (o.unstable) return "unstable";
+  if (timed_out) return "timeout";
+  std::seed_seq stream{options.seed, static_cast<std::uint64_t>(w.index), static_cast<std::uint64_t>(o.index),
+                       std::uint64_t{0xED2}};
+  std::mt19937_64 rng(stream);
+  const Uncertainty& u = w.task->task.uncertainty;
+  const Reading r = read_sensors(o.end, o.motions.back().contact_force, u, options.mode, rng);
+  const bool in_goal = o.success;
+  if (signals_success(r, goal, u, margin)) return in_goal ? "success" : "false_success";
+  return !in_goal ? "failure_signalled" : w.guaranteed ? "false_failure" : "missed_success";
+}
+
+void count(EdrCheck* out, const std::string& outcome) {
+  int* counter = outcome == "success"             ? &out->success
+                 : outcome == "failure_signalled" ? &out->failure_signalled
+                 : outcome == "false_success"     ? &out->false_success
+                 : outcome == "false_failure"     ? &out->false_failure
+                 : outcome == "missed_success"    ? &out->missed_success
+                 : outcome == "timeout"           ? &out->timeout
+                                                  : &out->unstable;
+  ++*counter;
+  ++out->rollouts;
+}
+
+// The world's rollouts classified and its soundness added to `out`.
+void score_world(const Task& task, const World& w, const std::vector<GoalPiece>& goal, double margin,
+                 const EdrCheckOptions& options, EdrCheck* out) {
+  const ValidationResult& v = w.validation;
+  const std::string flags = world_flags(task, w.values);
+  auto replay = [&](int index) {
+    return replay_command(*w.task, v.strategy, v.options.seed, index, options.mode,
+                          ControllerForm::kImpedance) +
+           flags;
+  };
+  nlohmann::json counts = nlohmann::json::object();
+  for (const char* k : kEdrOutcomes) counts[k] = 0;
+  for (const RolloutOutcome& o : v.rollouts) {
+    const std::string outcome = classify(w, o, goal, margin, options);
+    count(out, outcome);
+    counts[outcome] = counts[outcome].get<int>() + 1;
+    const EdrCheckOutcome record{w.values, w.index, o.index, outcome, o.end, replay(o.index)};
+    if ((outcome == "false_success" || outcome == "false_failure") && out->forbidden.size() < kListed)
+      out->forbidden.push_back(record);
+    if (outcome == "missed_success" && out->missed.size() < kListed) out->missed.push_back(record);
+  }
+  out->ends += static_cast<int>(v.ends.size());
+  out->outside += v.outside;
+  for (const ObservedEnd& e : v.worst)
+    if (out->outside_ends.size() < static_cast<std::size_t>(kMaxWorstEnds))
+      out->outside_ends.push_back({w.values, w.index, e.rollout, "outside", e.end, replay(e.rollout)});
+  out->worlds.push_back({{"params", w.values},
+                         {"replay", replay(static_cast<int>(v.rollouts.size()) - 1)},
+                         {"guaranteed", w.guaranteed},
+                         {"outcomes", counts},
+                         {"outside", v.outside},
+                         {"coverage", v.coverage}});
+}
+
 }  // namespace
 
-EdrCheck check_edr(const Task& task, const std::vector<std::string>& motions, const EdrResult& verdict,
+EdrCheck check_edr(const Task& task, const std::string& strategy_name, const EdrResult& verdict,
                    const EdrCheckOptions& options) {
   EdrCheck out;
   const std::vector<GoalPiece> goal = goal_terminations(verdict);
   double scale = 0;
   for (const EdrSlice& s : verdict.slices) scale = std::max(scale, s.task->cspace.scale());
   const double margin = kEdrPositionRelativeMargin * scale;
-  const Strategy strategy = Strategy::sequence("edr", motions);
+  const Strategy& strategy = task.strategy_named(strategy_name);
   std::mt19937_64 worlds_rng(options.seed);
-  for (int w = 0; w < options.worlds; ++w) {
-    const std::vector<double> values = draw_world(task, worlds_rng);
-    const auto world = load_task_slice(task, values);
-    const bool guaranteed = verify_motions(*world, motions, rollout_verify_options(*world)).reliable;
-    SimOptions sim;
-    sim.form = ControllerForm::kImpedance;
-    sim.mode = options.mode;
-    const auto scene = RolloutScene::build(world, sim);
-    const std::vector<RolloutOutcome> rollouts =
-        run_rollouts(scene, strategy, options.rollouts_per_world,
-                     options.seed + static_cast<std::uint64_t>(w), options.threads);
-    nlohmann::json counts = {{"success", 0},       {"failure_signalled", 0}, {"false_success", 0},
-                             {"false_failure", 0}, {"missed_success", 0},    {"timeout", 0},
-                             {"unstable", 0}};
-    for (const RolloutOutcome& o : rollouts) {
-      std::string outcome;
-      bool timed_out = false;
-      for (const MotionOutcome& m : o.motions) timed_out = timed_out || m.termination == Termination::kNone;
-      if (o.unstable) {
-        outcome = "unstable";
-      } else if (timed_out || o.motions.size() < motions.size()) {
-        outcome = "timeout";
-      } else {
-        std::seed_seq stream{options.seed, static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(o.index),
-                             std::uint64_t{0xED2}};
-        std::mt19937_64 rng(stream);
-        const Reading r =
-            read_sensors(o.end, o.motions.back().contact_force, task.uncertainty, options.mode, rng);
-        const bool in_goal = scene->goal_distance(o.end) <= scene->atom_tolerance();
-        const bool reported = signals_success(r, goal, task.uncertainty, margin);
-        outcome = reported ? (in_goal ? "success" : "false_success")
-                           : (!in_goal     ? "failure_signalled"
-                              : guaranteed ? "false_failure"
-                                           : "missed_success");
-      }
-      counts[outcome] = counts[outcome].get<int>() + 1;
-      const EdrCheckOutcome record{values, w, o.index, outcome, o.end};
-      if ((outcome == "false_success" || outcome == "false_failure") && out.forbidden.size() < kListed)
-        out.forbidden.push_back(record);
-      if (outcome == "missed_success" && out.missed.size() < kListed) out.missed.push_back(record);
-    }
-    out.rollouts += static_cast<int>(rollouts.size());
-    out.success += counts["success"].get<int>();
-    out.failure_signalled += counts["failure_signalled"].get<int>();
-    out.false_success += counts["false_success"].get<int>();
-    out.false_failure += counts["false_failure"].get<int>();
-    out.missed_success += counts["missed_success"].get<int>();
-    out.timeout += counts["timeout"].get<int>();
-    out.unstable += counts["unstable"].get<int>();
-    out.worlds.push_back({{"params", values}, {"guaranteed", guaranteed}, {"outcomes", counts}});
+  const int per_world = std::max(1, options.rollouts_per_world);
+  double coverage_sum = 0;
+  int worlds = 0;
+  for (std::int64_t done = 0; done < options.rollouts; done += per_world, ++worlds) {
+    const int rollouts = static_cast<int>(std::min<std::int64_t>(per_world, options.rollouts - done));
+    const World w = run_world(task, strategy, worlds, draw_world(task, worlds_rng), rollouts, options);
+    score_world(task, w, goal, margin, options, &out);
+    coverage_sum += w.validation.coverage;
   }
+  out.soundness = out.ends == 0 ? 1.0 : static_cast<double>(out.ends - out.outside) / out.ends;
+  out.coverage = worlds == 0 ? 0.0 : coverage_sum / worlds;
   return out;
 }
 
@@ -151,7 +220,8 @@ nlohmann::json edr_check_json(const Task& task, const EdrCheck& check) {
                      {"world", o.world},
                      {"index", o.index},
                      {"outcome", o.outcome},
-                     {"end", point_json(o.end, task.dimension)}});
+                     {"end", point_json(o.end, task.dimension)},
+                     {"replay", o.replay}});
     return out;
   };
   return {{"rollouts", check.rollouts},
@@ -163,6 +233,12 @@ nlohmann::json edr_check_json(const Task& task, const EdrCheck& check) {
             {"missed_success", check.missed_success},
             {"timeout", check.timeout}}},
           {"unstable", check.unstable},
+          {"missed_success", check.missed_success},
+          {"ends", check.ends},
+          {"outside", check.outside},
+          {"soundness", check.soundness},
+          {"coverage", check.coverage},
+          {"outside_ends", listed(check.outside_ends)},
           {"forbidden", listed(check.forbidden)},
           {"missed", listed(check.missed)},
           {"worlds", check.worlds}};

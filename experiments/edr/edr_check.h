@@ -5,8 +5,8 @@
 //  - success: the predicate signals success and the robot is in the world's goal;
 //  - failure_signalled: it signals failure and the robot is not in the goal;
 //  - false_success (forbidden): success signalled, not in the goal;
-//  - false_failure (forbidden): failure signalled in a world where the verifier guarantees success (its slice
-//    is reliable: every termination lies in the goal);
+//  - false_failure (forbidden): failure signalled in a world where the verifier guarantees success (run in
+//    that world, it says every termination lies in the goal);
 //  - missed_success: failure signalled although the robot is in the goal of a world without that guarantee
 //    (allowed by Donald's axioms only where success is not recognizable; a slicing gap when the verifier's
 //    slices say every termination in the goal is recognized);
@@ -28,9 +28,9 @@
 namespace cmt {
 
 struct EdrCheckOptions {
-  int worlds = 100;  // worlds drawn over the model parameters' intervals
-  int rollouts_per_world = 10;
-  std::uint64_t seed = 1;
+  int rollouts = 1000;          // in all, spread over ceil(rollouts / rollouts_per_world) worlds
+  int rollouts_per_world = 10;  // the last world takes the remainder
+  std::uint64_t seed = 1;       // world w draws its rollouts from seed + w (replay: cmt rollout --world)
   int threads = 1;
   SampleMode mode = SampleMode::kExtreme;
 };
@@ -40,6 +40,7 @@ struct EdrCheckOutcome {
   int world = -1, index = -1;  // rollout `index` of world `world` (seed EdrCheckOptions::seed + world)
   std::string outcome;
   Vec3 end = Vec3::Zero();
+  std::string replay;  // `cmt rollout ... --world NAME=VALUE ...` that runs it as its last rollout
 };
 
 struct EdrCheck {
@@ -47,11 +48,20 @@ struct EdrCheck {
       missed_success = 0, timeout = 0, unstable = 0;
   std::vector<EdrCheckOutcome> forbidden;  // false successes and false failures (at most 50)
   std::vector<EdrCheckOutcome> missed;     // missed successes (at most 50)
-  // Per world: its values, whether its slice is reliable, and its outcome counts (the report's plot).
+  // The verifier in each world against its rollouts (docs/validation.md): motion ends outside the world's
+  // predicted termination sets, of `ends`; soundness = (ends - outside) / ends; coverage the mean over the
+  // worlds of their coverage (validation.h score_coverage). `outside_ends` lists them (the first 20, each
+  // world's farthest first) with replays.
+  int ends = 0, outside = 0;
+  double soundness = 1, coverage = 0;
+  std::vector<EdrCheckOutcome> outside_ends;
+  // Per world: its values, whether its verification is reliable, its outcome counts (the report's plot),
+  // outside ends and coverage, and the `cmt rollout` command that runs its rollouts again.
   nlohmann::json worlds = nlohmann::json::array();
 };
 
-EdrCheck check_edr(const Task& task, const std::vector<std::string>& motions, const EdrResult& verdict,
+// `strategy` names a decision-free strategy of the task (its motions run in every world).
+EdrCheck check_edr(const Task& task, const std::string& strategy, const EdrResult& verdict,
                    const EdrCheckOptions& options);
 nlohmann::json edr_check_json(const Task& task, const EdrCheck& check);
 

@@ -9,17 +9,8 @@ namespace {
 
 using nlohmann::json;
 
-Cell text(const std::string& s) { return {{s, "", false, ""}}; }
-
-double number(const json& j, const char* key) {
-  const json& v = json_member(j, key);
-  return v.is_number() ? v.get<double>() : 0.0;
-}
-
-bool flag(const json& j, const char* key) {
-  const json& v = json_member(j, key);
-  return v.is_boolean() && v.get<bool>();
-}
+double number(const json& j, const char* key) { return json_number(j, key); }
+bool flag(const json& j, const char* key) { return json_flag(j, key); }
 
 // "alpha=-1: no goal, H 2.53; alpha=0.5: goal 0.63, H 0": per slice its parameters, the goal's termination
 // area (or "no goal") and H's.
@@ -86,13 +77,13 @@ Table edr_table(const std::vector<nlohmann::json>& runs) {
     std::ostringstream s;
     s.precision(3);
     s << number(j, "seconds");
-    t.rows.push_back({text(task.is_string() ? task.get<std::string>() : "?"),
-                      text(strategy.is_string() ? strategy.get<std::string>() : "?"),
-                      text(flag(j, "edr_reliable") ? "yes" : "no"),
-                      text(reason.is_string() ? reason.get<std::string>() : ""),
-                      text(slices_text(json_member(j, "slices"))),
-                      text(std::to_string(static_cast<int>(number(j, "confusion_count")))),
-                      text(check_text(json_member(j, "check"))), text(s.str())});
+    t.rows.push_back({text_cell(task.is_string() ? task.get<std::string>() : "?"),
+                      text_cell(strategy.is_string() ? strategy.get<std::string>() : "?"),
+                      text_cell(flag(j, "edr_reliable") ? "yes" : "no"),
+                      text_cell(reason.is_string() ? reason.get<std::string>() : ""),
+                      text_cell(slices_text(json_member(j, "slices"))),
+                      text_cell(std::to_string(static_cast<int>(number(j, "confusion_count")))),
+                      text_cell(check_text(json_member(j, "check"))), text_cell(s.str())});
   }
   return t;
 }

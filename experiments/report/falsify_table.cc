@@ -9,20 +9,11 @@
 
 namespace cmt::report {
 
-const nlohmann::json& json_member(const nlohmann::json& j, const char* key) {
-  static const nlohmann::json null;
-  if (!j.is_object()) return null;
-  const auto it = j.find(key);
-  return it == j.end() ? null : *it;
-}
-
 namespace {
 
 using nlohmann::json;
 
 constexpr int kFractionDecimals = 4;  // coverage, as in the main table
-
-Cell text(const std::string& s) { return {{s, "", false, ""}}; }
 
 const json& member(const json& j, const char* key) { return json_member(j, key); }
 
@@ -113,24 +104,24 @@ Cell unreached(const json& f) {
     s += i + 1 < pieces.size() ? ");" : ")";
     cell.push_back({s, "", false, ""});
   }
-  return cell.empty() ? text("-") : cell;
+  return cell.empty() ? text_cell("-") : cell;
 }
 
 std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
   row.push_back({{std::to_string(c.config_id), section_link(c), false, ""}});
-  row.push_back(text(s.label));
-  row.push_back(text(verdict_text(c)));
+  row.push_back(text_cell(s.label));
+  row.push_back(text_cell(verdict_text(c)));
   std::string rollouts = std::to_string(integer(f, "rollouts"));
   if (const int unstable = integer(f, "unstable"); unstable > 0)
     rollouts += " (" + std::to_string(unstable) + " unstable)";
-  row.push_back(text(rollouts));
-  row.push_back(text(std::to_string(integer(f, "searches"))));
-  row.push_back(text(std::to_string(integer(f, "outside"))));
-  row.push_back(text(best_distances(f)));
-  row.push_back(text(coverage_change(f)));
-  row.push_back(text(pieces_reached(f)));
+  row.push_back(text_cell(rollouts));
+  row.push_back(text_cell(std::to_string(integer(f, "searches"))));
+  row.push_back(text_cell(std::to_string(integer(f, "outside"))));
+  row.push_back(text_cell(best_distances(f)));
+  row.push_back(text_cell(coverage_change(f)));
+  row.push_back(text_cell(pieces_reached(f)));
   row.push_back(unreached(f));
   return row;
 }

@@ -8,6 +8,7 @@
 
 #include "experiments/common/json_text.h"
 #include "experiments/report/cspace_figure.h"
+#include "experiments/report/edr_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
@@ -24,6 +25,7 @@ namespace {
 constexpr const char* kFigureDir = "figures";
 constexpr const char* kFigurePrefix = "config_";  // every figure and 3-D page this command writes starts so
 constexpr const char* kViewDir = "view";          // 3-D pages (view_page.h) and their shared assets
+constexpr const char* kEdrFigurePrefix = "edr_";  // the EDR outcome figures (write_edr_figures)
 
 std::string key(const ConfigRow& c, const std::string& column) {
   return column + " (config_id " + std::to_string(c.config_id) + ")";
@@ -41,7 +43,8 @@ void prepare_output(const std::filesystem::path& out_dir) {
   for (const auto& [dir, extension] : {std::pair{kFigureDir, ".png"}, std::pair{kViewDir, ".html"}})
     for (const auto& entry : std::filesystem::directory_iterator(out_dir / dir)) {
       const std::string name = entry.path().filename().string();
-      if (entry.is_regular_file() && name.rfind(kFigurePrefix, 0) == 0 &&
+      if (entry.is_regular_file() &&
+          (name.rfind(kFigurePrefix, 0) == 0 || name.rfind(kEdrFigurePrefix, 0) == 0) &&
           entry.path().extension() == extension)
         std::filesystem::remove(entry.path());
     }
@@ -222,12 +225,44 @@ std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::pat
     std::ifstream in(f);
     if (!in) throw TaskError(f.string(), "", "cannot open the EDR result");
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    // `cmt validate --edr --json`: the verdict with the check beside it, as `cmt edr --check` writes them.
+    if (j.is_object() && j.contains("verdict") && j["verdict"].is_object() && j.contains("outcomes")) {
+      nlohmann::json verdict = j["verdict"];
+      j.erase("verdict");
+      verdict["check"] = std::move(j);
+      j = std::move(verdict);
+    }
     if (j.is_discarded() || !j.is_object() || !j.contains("edr_reliable") || !j.contains("slices"))
       throw TaskError(f.string(), "",
-                      "not a `cmt edr --json` result (an object with edr_reliable and slices)");
+                      "not a `cmt edr --json` or `cmt validate --edr --json` result (an object with "
+                      "edr_reliable and slices)");
     runs.push_back(std::move(j));
   }
   return runs;
+}
+
+// Per EDR result with a physics check, its outcomes against the first model parameter (edr_figure.h) in
+// figures/edr_<i>.png; each figure's layout is added to `figures` (figures.json) with kind "edr".
+std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs,
+                                         const std::filesystem::path& out_dir, nlohmann::json* figures) {
+  std::vector<FigureRef> refs;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    auto text = [&](const char* key) {
+      return runs[i].contains(key) && runs[i][key].is_string() ? runs[i][key].get<std::string>() : "?";
+    };
+    const std::string label = text("task") + " / " + text("strategy") + ": EDR outcomes per world";
+    const std::optional<PlotCanvas> canvas = draw_edr_figure(runs[i], label);
+    if (!canvas) continue;
+    const std::string file = std::string(kFigureDir) + "/" + kEdrFigurePrefix + std::to_string(i) + ".png";
+    canvas->save(out_dir / file);
+    refs.push_back({file, label});
+    nlohmann::json entry = canvas->layout();
+    entry["file"] = file;
+    entry["config_id"] = nullptr;  // not a configuration's
+    entry["kind"] = "edr";
+    figures->push_back(entry);
+  }
+  return refs;
 }
 
 }  // namespace
@@ -250,8 +285,10 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   ReportContent content = build_report_content(db, std::move(sections));
   content.teaching = teaching_table(teaching);
   content.edr = edr_table(edr);
+  nlohmann::json figures = builder.figures();
+  content.edr_figures = write_edr_figures(edr, out_dir, &figures);
   summary.configs = static_cast<int>(db.configs.size());
-  summary.figures = static_cast<int>(builder.figures().size());
+  summary.figures = static_cast<int>(figures.size());
   summary.index = out_dir / "index.html";
   summary.markdown = out_dir / "report.md";
   summary.figures_json = out_dir / "figures.json";
@@ -259,7 +296,7 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   write_text_file(summary.index, render_html(content));
   write_text_file(
       summary.figures_json,
-      json_text(nlohmann::json({{"database", database.string()}, {"figures", builder.figures()}}), 2) + "\n");
+      json_text(nlohmann::json({{"database", database.string()}, {"figures", figures}}), 2) + "\n");
   return summary;
 }
 

@@ -149,10 +149,12 @@ constexpr const char* kEdrIntro =
     "confusable with a failure termination H of any slice), and per slice of the model parameters the "
     "area where it may end in the goal and in H.";
 
-void md_edr(std::ostream& md, const Table& t) {
+void md_edr(std::ostream& md, const Table& t, const std::vector<FigureRef>& figures) {
   if (t.rows.empty()) return;
   md << "## " << kEdrTitle << "\n\n" << kEdrIntro << "\n\n";
   md_table(md, t);
+  for (const FigureRef& f : figures) md << "![" << md_escape(f.caption) << "](" << f.file << ")\n";
+  if (!figures.empty()) md << "\n";
 }
 
 void md_section(std::ostream& md, const ConfigSection& s) {
@@ -248,6 +250,13 @@ void html_falsify(std::ostream& h, const Table& t) {
   html_rows(h, t);
 }
 
+void html_figures(std::ostream& h, const std::vector<FigureRef>& figures) {
+  for (const FigureRef& f : figures)
+    h << "<figure><a href=\"" << html_escape(f.file) << "\"><img src=\"" << html_escape(f.file) << "\" alt=\""
+      << html_escape(f.caption) << "\"></a><figcaption>" << html_escape(f.caption)
+      << "</figcaption></figure>\n";
+}
+
 void html_teaching(std::ostream& h, const Table& t) {
   if (t.rows.empty()) return;
   h << "<h2 id=\"teaching\">" << kTeachingTitle << "</h2>\n<p>" << html_escape(kTeachingIntro)
@@ -255,11 +264,12 @@ void html_teaching(std::ostream& h, const Table& t) {
   html_rows(h, t);
 }
 
-void html_edr(std::ostream& h, const Table& t) {
+void html_edr(std::ostream& h, const Table& t, const std::vector<FigureRef>& figures) {
   if (t.rows.empty()) return;
   h << "<h2 id=\"edr\">" << kEdrTitle << "</h2>\n<p>" << html_escape(kEdrIntro)
     << "</p>\n<table class=\"edr\">\n";
   html_rows(h, t);
+  html_figures(h, figures);
 }
 
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
@@ -276,10 +286,7 @@ void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
     for (const std::string& n : s.notes) h << "<li>" << html_escape(n) << "</li>\n";
     h << "</ul>\n";
   }
-  for (const FigureRef& f : s.figures)
-    h << "<figure><a href=\"" << html_escape(f.file) << "\"><img src=\"" << html_escape(f.file) << "\" alt=\""
-      << html_escape(f.caption) << "\"></a><figcaption>" << html_escape(f.caption)
-      << "</figcaption></figure>\n";
+  html_figures(h, s.figures);
   h << "</section>\n";
 }
 
@@ -320,7 +327,7 @@ std::string render_markdown(const ReportContent& c) {
   md_table(md, c.table);
   md_falsify(md, c.falsify);
   md_teaching(md, c.teaching);
-  md_edr(md, c.edr);
+  md_edr(md, c.edr, c.edr_figures);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -334,7 +341,7 @@ std::string render_html(const ReportContent& c) {
   html_overview(h, c.overview);
   html_falsify(h, c.falsify);
   html_teaching(h, c.teaching);
-  html_edr(h, c.edr);
+  html_edr(h, c.edr, c.edr_figures);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

@@ -8,6 +8,25 @@
 #include "experiments/common/verifier_budget.h"
 
 namespace cmt::report {
+
+Cell text_cell(const std::string& s) { return {{s, "", false, ""}}; }
+
+const nlohmann::json& json_member(const nlohmann::json& j, const char* key) {
+  static const nlohmann::json null;
+  if (!j.is_object()) return null;
+  const auto it = j.find(key);
+  return it == j.end() ? null : *it;
+}
+
+double json_number(const nlohmann::json& j, const char* key) {
+  const nlohmann::json& v = json_member(j, key);
+  return v.is_number() ? v.get<double>() : 0.0;
+}
+
+bool json_flag(const nlohmann::json& j, const char* key) {
+  const nlohmann::json& v = json_member(j, key);
+  return v.is_boolean() && v.get<bool>();
+}
 namespace {
 
 // Soundness and coverage are fractions judged against 1: four decimals show a single outside end in 10^4.
@@ -16,7 +35,6 @@ constexpr int kSecondsDecimals = 2;
 constexpr int kRadiusDecimals = 3;
 constexpr const char* kPending = "pending";
 
-Cell text(const std::string& s) { return {{s, "", false, ""}}; }
 Cell link(const std::string& s, const std::string& href) { return {{s, href, false, ""}}; }
 
 std::string percent(int part, int whole) {
@@ -53,37 +71,37 @@ const MetricsRow* done_metrics(const ConfigRow& c) { return c.done() && c.metric
 std::vector<Cell> full_row(const ConfigSection& s) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
-  row.push_back(text(std::to_string(c.config_id)));
-  row.push_back(text(c.task));
-  row.push_back(text(c.strategy));
-  row.push_back(text(c.params.empty() ? "-" : json_text(c.params)));
-  row.push_back(text(verdict(c)));
-  row.push_back(text(c.done() ? "done" : kPending));
-  row.push_back(text(std::to_string(c.seed)));
+  row.push_back(text_cell(std::to_string(c.config_id)));
+  row.push_back(text_cell(c.task));
+  row.push_back(text_cell(c.strategy));
+  row.push_back(text_cell(c.params.empty() ? "-" : json_text(c.params)));
+  row.push_back(text_cell(verdict(c)));
+  row.push_back(text_cell(c.done() ? "done" : kPending));
+  row.push_back(text_cell(std::to_string(c.seed)));
   if (const MetricsRow* m = done_metrics(c)) {
-    row.push_back(text(std::to_string(m->rollouts)));
-    row.push_back(text(std::to_string(m->successes) + " (" + percent(m->successes, m->rollouts) + ")"));
-    row.push_back(text(std::to_string(m->unstable)));
-    row.push_back(text(std::to_string(m->ends)));
-    row.push_back(text(std::to_string(m->outside)));
-    row.push_back(text(format_fixed(m->soundness, kFractionDecimals)));
-    row.push_back(text(format_fixed(m->coverage, kFractionDecimals) + " (r " +
-                       format_fixed(m->coverage_radius, kRadiusDecimals) + ")"));
-    row.push_back(text(m->soundness_bug ? "BUG" : "no"));
+    row.push_back(text_cell(std::to_string(m->rollouts)));
+    row.push_back(text_cell(std::to_string(m->successes) + " (" + percent(m->successes, m->rollouts) + ")"));
+    row.push_back(text_cell(std::to_string(m->unstable)));
+    row.push_back(text_cell(std::to_string(m->ends)));
+    row.push_back(text_cell(std::to_string(m->outside)));
+    row.push_back(text_cell(format_fixed(m->soundness, kFractionDecimals)));
+    row.push_back(text_cell(format_fixed(m->coverage, kFractionDecimals) + " (r " +
+                            format_fixed(m->coverage_radius, kRadiusDecimals) + ")"));
+    row.push_back(text_cell(m->soundness_bug ? "BUG" : "no"));
     const std::string replay = counterexample_command(m->counterexample);
-    row.push_back(replay.empty() ? text("-") : Cell{{replay, "", true, ""}});
-    row.push_back(text(format_fixed(m->verify_seconds, kSecondsDecimals)));
-    row.push_back(text(format_fixed(m->rollout_seconds, kSecondsDecimals)));
+    row.push_back(replay.empty() ? text_cell("-") : Cell{{replay, "", true, ""}});
+    row.push_back(text_cell(format_fixed(m->verify_seconds, kSecondsDecimals)));
+    row.push_back(text_cell(format_fixed(m->rollout_seconds, kSecondsDecimals)));
   } else {
-    row.push_back(text(std::to_string(c.n)));                   // requested
-    for (int i = 0; i < 8; ++i) row.push_back(text(kPending));  // successes .. counterexample
+    row.push_back(text_cell(std::to_string(c.n)));                   // requested
+    for (int i = 0; i < 8; ++i) row.push_back(text_cell(kPending));  // successes .. counterexample
     row.push_back(
-        text(c.prediction ? format_fixed(c.prediction->verify_seconds, kSecondsDecimals) : kPending));
-    row.push_back(text(kPending));
+        text_cell(c.prediction ? format_fixed(c.prediction->verify_seconds, kSecondsDecimals) : kPending));
+    row.push_back(text_cell(kPending));
   }
   Cell figures;
   for (const FigureRef& f : s.figures) figures.push_back({f.caption, f.file, false, ""});
-  row.push_back(figures.empty() ? text("-") : figures);
+  row.push_back(figures.empty() ? text_cell("-") : figures);
   return row;
 }
 
@@ -106,7 +124,7 @@ std::string section_link(const ConfigRow& c) {
 
 // The configuration's first figure (a C-space view), small, linked to the full-size PNG.
 Cell thumbnail(const ConfigSection& s) {
-  if (s.figures.empty()) return text("-");
+  if (s.figures.empty()) return text_cell("-");
   const FigureRef& f = s.figures.front();
   return {{f.caption, f.file, false, f.file}};
 }
@@ -121,14 +139,14 @@ std::vector<Cell> overview_row(const ConfigSection& s) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
   row.push_back(link(std::to_string(c.config_id), section_link(c)));
-  row.push_back(text(s.label));
-  row.push_back(text(overview_verdict(c)));
+  row.push_back(text_cell(s.label));
+  row.push_back(text_cell(overview_verdict(c)));
   if (const MetricsRow* m = done_metrics(c)) {
-    row.push_back(text(std::to_string(m->successes) + "/" + std::to_string(m->rollouts)));
-    row.push_back(text(overview_soundness(*m)));
-    row.push_back(text(format_fixed(m->coverage, kFractionDecimals)));
+    row.push_back(text_cell(std::to_string(m->successes) + "/" + std::to_string(m->rollouts)));
+    row.push_back(text_cell(overview_soundness(*m)));
+    row.push_back(text_cell(format_fixed(m->coverage, kFractionDecimals)));
   } else {
-    for (int i = 0; i < 3; ++i) row.push_back(text(kPending));
+    for (int i = 0; i < 3; ++i) row.push_back(text_cell(kPending));
   }
   row.push_back(thumbnail(s));
   row.push_back(links(s));

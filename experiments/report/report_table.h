@@ -82,8 +82,10 @@ struct ReportContent {
   // "Teaching sessions": one row per `cmt teach --json` result given to `cmt report --teach`; no rows, no
   // section.
   Table teaching;
-  // "Error detection and recovery": one row per `cmt edr --json` result given to `cmt report --edr`.
+  // "Error detection and recovery": one row per `cmt edr --json` result given to `cmt report --edr`, and per
+  // result with a physics check its outcomes against the first model parameter (edr_figure.h).
   Table edr;
+  std::vector<FigureRef> edr_figures;
   std::vector<ConfigSection> sections;
 };
 
@@ -103,6 +105,11 @@ std::string verdict_text(const ConfigRow& row);
 // A member of a JSON object; missing members, and any member of a non-object, read as null (the sections
 // built from commands' JSON show what the object has).
 const nlohmann::json& json_member(const nlohmann::json& j, const char* key);
+// A number member, 0 when missing or not a number; a boolean member, false when missing or not a boolean.
+double json_number(const nlohmann::json& j, const char* key);
+bool json_flag(const nlohmann::json& j, const char* key);
+// A table cell of plain text.
+Cell text_cell(const std::string& s);
 
 // ---- The adversarial search (falsify_table.cc; docs/falsify.md "In sweeps and the report") ----
 

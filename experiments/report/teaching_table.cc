@@ -9,15 +9,9 @@ namespace {
 
 using nlohmann::json;
 
-Cell text(const std::string& s) { return {{s, "", false, ""}}; }
-
 const json& member(const json& j, const char* key) { return json_member(j, key); }
 
-// A number member, 0 when missing or not a number (the section shows what the object has).
-double number(const json& j, const char* key) {
-  const json& v = member(j, key);
-  return v.is_number() ? v.get<double>() : 0.0;
-}
+double number(const json& j, const char* key) { return json_number(j, key); }
 
 std::string names(const json& list) {
   if (!list.is_array()) return "none";
@@ -91,21 +85,22 @@ Table teaching_table(const std::vector<TeachingRun>& runs) {
     std::ostringstream s;
     s.precision(3);
     s << number(j, "seconds");
-    Cell session = text(r.label);
+    Cell session = text_cell(r.label);
     if (!r.view_link.empty()) session.push_back({"3-D view", r.view_link, false, ""});
     if (is_backprojection(j)) {
       t.rows.push_back(
-          {text(task.is_string() ? task.get<std::string>() : "?"), session,
-           text(member(j, "start_inside").get<bool>() ? "yes (start in S)" : "no (start not in S)"),
-           text(names(member(j, "motions"))), text(backprojection_text(member(j, "steps"))),
-           text(check_text(member(j, "check"))), text(s.str())});
+          {text_cell(task.is_string() ? task.get<std::string>() : "?"), session,
+           text_cell(member(j, "start_inside").get<bool>() ? "yes (start in S)" : "no (start not in S)"),
+           text_cell(names(member(j, "motions"))), text_cell(backprojection_text(member(j, "steps"))),
+           text_cell(check_text(member(j, "check"))), text_cell(s.str())});
       continue;
     }
     t.rows.push_back(
-        {text(task.is_string() ? task.get<std::string>() : "?"), session,
-         text(member(j, "solved").is_boolean() && member(j, "solved").get<bool>() ? "yes" : "no"),
-         text(member(j, "strategy").is_array() ? names(member(j, "strategy")) : "none"),
-         text(steps_text(member(j, "steps"))), text(check_text(member(j, "check"))), text(s.str())});
+        {text_cell(task.is_string() ? task.get<std::string>() : "?"), session,
+         text_cell(member(j, "solved").is_boolean() && member(j, "solved").get<bool>() ? "yes" : "no"),
+         text_cell(member(j, "strategy").is_array() ? names(member(j, "strategy")) : "none"),
+         text_cell(steps_text(member(j, "steps"))), text_cell(check_text(member(j, "check"))),
+         text_cell(s.str())});
   }
   return t;
 }

@@ -1,5 +1,6 @@
-// `cmt edr` end to end (docs/edr.md) on Donald's Example (1), models/tasks/step_offset.yaml, under the
-// rollouts' model: the verdicts, the JSON fields, bad input.
+// `cmt edr`, `cmt verify --edr`, `cmt validate --edr` and `cmt rollout --world` end to end (docs/edr.md) on
+// Donald's Example (1), models/tasks/step_offset.yaml, under the rollouts' model: the verdicts, the JSON
+// fields, the physics check's outcomes and replays, bad input.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -26,7 +27,9 @@ TEST(CmtEdr, StepOffsetEdrIsReliableAndSteepIsNot) {
     EXPECT_EQ(s["goal_empty"].get<bool>(), alpha <= 0) << alpha;
     ASSERT_TRUE(s["terminates"].get<bool>());
     EXPECT_EQ(s["success_area"].get<double>() > 0, alpha > 0) << alpha;
-    if (alpha <= 0) EXPECT_GT(s["failure_area"].get<double>(), 0) << alpha;  // H wherever the goal vanishes
+    if (alpha <= 0) {
+      EXPECT_GT(s["failure_area"].get<double>(), 0) << alpha;  // H wherever the goal vanishes
+    }
     EXPECT_TRUE(s.contains("strong_preimage_area") && s.contains("weak_preimage_area"));
     EXPECT_TRUE(s["distinguishable"].get<bool>());
   }
@@ -54,6 +57,110 @@ TEST(CmtEdr, BadInputExitsTwo) {
   const Result r = run("edr " + path.string() + " --strategy edr --json");
   EXPECT_EQ(r.status, 2);
   std::filesystem::remove(path);
+}
+
+TEST(CmtVerifyEdr, ReadsTheMotionsEdrPredicate) {
+  const Result edr = run("verify " + task("step_offset") + " --strategy edr --edr --json");
+  ASSERT_EQ(edr.status, 0) << edr.out;
+  const auto j = nlohmann::json::parse(edr.out);
+  EXPECT_TRUE(j["edr_reliable"].get<bool>());
+  EXPECT_TRUE(j["reliable"].get<bool>());
+  EXPECT_EQ(j["slices"].size(), 5u);
+  // The same verdict as `cmt edr` at another resolution: 3 values, the critical 0 and 2 midpoints.
+  const Result fine = run("verify " + task("step_offset") + " --strategy edr --edr --resolution 3 --json");
+  ASSERT_EQ(fine.status, 0) << fine.out;
+  EXPECT_EQ(nlohmann::json::parse(fine.out)["slices"].size(), 5u);
+
+  const Result steep = run("verify " + task("step_offset") + " --strategy steep --edr --json");
+  EXPECT_EQ(steep.status, 1) << steep.out;
+  EXPECT_FALSE(nlohmann::json::parse(steep.out)["edr_reliable"].get<bool>());
+
+  // `down` carries no `edr: true`: bad input naming the motion's key.
+  const Result down = run("verify " + task("step_offset") + " --strategy down --edr --json");
+  ASSERT_EQ(down.status, 2) << down.out;
+  EXPECT_EQ(nlohmann::json::parse(down.out)["error"]["key"], "motions.down.edr");
+}
+
+// Donald's Example (6), the width alone, under the rollouts' model: the two-motion plan is EDR-reliable; the
+// goal (the hole's bottom) exists exactly where the hole is wider than the peg (w > 1).
+TEST(CmtVerifyEdr, HoleWidthTwoMotionPlanIsEdrReliable) {
+  const Result r = run("verify " + task("hole_width") + " --strategy edr --edr --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["edr_reliable"].get<bool>());
+  EXPECT_FALSE(j["timed_out"].get<bool>());
+  EXPECT_EQ(j["parameters"][0]["critical"], nlohmann::json::array({1.0}));
+  for (const auto& s : j["slices"]) {
+    const double w = s["params"]["hole_width"].get<double>();
+    EXPECT_EQ(s["goal_empty"].get<bool>(), w <= 1) << w;
+    EXPECT_EQ(s["success_area"].get<double>() > 0, w > 1) << w;
+  }
+}
+
+TEST(CmtVerifyEdr, AMalformedEdrKeyNamesIt) {
+  std::ifstream in(task("step_offset"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "edr: true}     #";
+  text.replace(text.find(from), from.size(), "edr: yes}     #");
+  const auto path = std::filesystem::temp_directory_path() / "cmt_edr_bad_key.yaml";
+  std::ofstream(path) << text;
+  const Result r = run("verify " + path.string() + " --strategy edr --json");
+  ASSERT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["error"]["key"], "motions.left.edr");
+  std::filesystem::remove(path);
+}
+
+// 60 rollouts in 3 worlds drawn over alpha in [-1, 1]: every rollout is classified, none is forbidden, the
+// verifier's prediction in each world holds every motion end, and each world's replay command runs its
+// rollouts again with the same goal outcomes.
+TEST(CmtValidateEdr, StepOffsetOutcomesAreAllowedAndReplay) {
+  const Result v = run("validate " + task("step_offset") +
+                       " --strategy edr --edr -n 60 --per-world 20 --seed 7 --mode "
+                       "extreme --json");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const auto j = nlohmann::json::parse(v.out);
+  EXPECT_TRUE(j["reliable"].get<bool>());
+  EXPECT_EQ(j["rollouts"].get<int>(), 60);
+  const auto& o = j["outcomes"];
+  EXPECT_EQ(o["false_success"].get<int>(), 0);
+  EXPECT_EQ(o["false_failure"].get<int>(), 0);
+  EXPECT_EQ(o["success"].get<int>() + o["failure_signalled"].get<int>() + o["timeout"].get<int>() +
+                j["missed_success"].get<int>() + j["unstable"].get<int>(),
+            60);
+  EXPECT_EQ(j["successes"].get<int>(),
+            o["success"].get<int>() + j["missed_success"].get<int>() + o["false_failure"].get<int>());
+  EXPECT_EQ(j["outside"].get<int>(), 0);
+  EXPECT_EQ(j["soundness"].get<double>(), 1.0);
+  EXPECT_GT(j["coverage"].get<double>(), 0.0);
+  ASSERT_EQ(j["worlds"].size(), 3u);
+  for (const auto& w : j["worlds"]) {
+    const double alpha = w["params"][0].get<double>();
+    const auto& c = w["outcomes"];
+    // Where the goal vanishes (alpha <= 0) nothing may succeed; the predicate must say failure.
+    if (alpha <= 0) {
+      EXPECT_EQ(c["success"].get<int>() + c["missed_success"].get<int>(), 0) << alpha;
+    }
+    const std::string replay = w["replay"].get<std::string>();
+    ASSERT_EQ(replay.rfind("cmt rollout ", 0), 0u) << replay;
+    const Result again = run(replay.substr(4) + " --json");
+    ASSERT_NE(again.status, 2) << replay;
+    const auto r = nlohmann::json::parse(again.out);
+    ASSERT_EQ(r["rollouts"].get<int>(), 20) << replay;
+    EXPECT_EQ(r["successes"].get<int>(),
+              c["success"].get<int>() + c["missed_success"].get<int>() + c["false_failure"].get<int>())
+        << replay;
+  }
+}
+
+TEST(CmtRolloutWorld, BadWorldsExitTwo) {
+  const std::string base = "rollout " + task("step_offset") + " --strategy edr -n 1 --json";
+  EXPECT_EQ(run(base + " --world alpha=0.5").status, 0);
+  const Result unknown = run(base + " --world beta=0.5");
+  ASSERT_EQ(unknown.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(unknown.out)["error"]["key"], "--world");
+  EXPECT_EQ(run(base + " --world alpha=1.5").status, 2);  // outside [-1, 1]
+  EXPECT_EQ(run(base + " --world alpha=x").status, 2);
+  EXPECT_EQ(run(base + " --world alpha").status, 2);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/report/edr_figure.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
 #include "experiments/report/results_db.h"
@@ -1020,3 +1021,34 @@ TEST(Report, EdrSectionListsSlicesAndTheCheck) {
 }
 
 }  // namespace
+
+// The EDR figure: one stacked bar per world at its alpha, its outcome fractions in the outcomes' colours,
+// nothing where no world was drawn; no figure without a check.
+TEST(Report, EdrFigureStacksEachWorldsOutcomesAtItsValue) {
+  const json run = {{"task", "step_offset"},
+                    {"strategy", "edr"},
+                    {"parameters", {{{"name", "alpha"}, {"min", -1.0}, {"max", 1.0}, {"critical", {0.0}}}}},
+                    {"check",
+                     {{"worlds",
+                       {{{"params", {-0.5}}, {"outcomes", {{"failure_signalled", 10}, {"success", 0}}}},
+                        {{"params", {0.5}}, {"outcomes", {{"success", 6}, {"failure_signalled", 4}}}}}}}}};
+  const auto canvas = cmt::report::draw_edr_figure(run, "step_offset / edr");
+  ASSERT_TRUE(canvas.has_value());
+  auto color_at = [&](double x, double y) {
+    const cv::Point2d p = canvas->to_image({x, y});
+    const cv::Vec3b c =
+        canvas->image().at<cv::Vec3b>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
+    return (c[2] << 16) | (c[1] << 8) | c[0];  // BGR to 0xrrggbb
+  };
+  const int green = 0x009e73, blue = 0x0072b2;
+  EXPECT_EQ(color_at(-0.5, 0.2), blue);  // all ten signalled failure
+  EXPECT_EQ(color_at(-0.5, 0.9), blue);
+  EXPECT_EQ(color_at(0.5, 0.3), green);   // six of ten succeeded: the bottom 0.6
+  EXPECT_EQ(color_at(0.5, 0.8), blue);    // then four failures
+  EXPECT_NE(color_at(0.25, 0.5), green);  // no world there
+  EXPECT_NE(color_at(0.25, 0.5), blue);
+
+  json without_check = run;
+  without_check.erase("check");
+  EXPECT_FALSE(cmt::report::draw_edr_figure(without_check, "x").has_value());
+}

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 
 #include "models/loaded_task.h"
 #include "models/task_error.h"
@@ -35,6 +37,11 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return text.replace(at, from.size(), to);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 void expect_error(const std::string& yaml, const std::string& key, const std::string& reason) {
@@ -171,6 +178,17 @@ TEST(ModelError, ASliceMayLoseItsGoalButNotItsStart) {
   // The whole task at such a value does not (its goal is off the surface).
   EXPECT_THROW(load_task_from_string(replaced(kStepYaml, "nominal: 0.5", "nominal: 0"), "step.yaml"),
                TaskError);
+  // With model error the nominal goal may lie partly off the surface (hole_width gives the widest hole's
+  // bottom): the part on a face counts; none at all is an error naming the goal.
+  const std::string hole = std::string(CMT_SOURCE_DIR) + "/models/tasks/hole_width.yaml";
+  EXPECT_NO_THROW(load_task(hole));
+  const std::string closed = replaced(read_file(hole), "nominal: 2}", "nominal: 0.75}");
+  try {
+    load_task_from_string(closed, "closed.yaml");
+    ADD_FAILURE() << "a goal nowhere on the surface loaded";
+  } catch (const TaskError& e) {
+    EXPECT_EQ(e.key(), "goal") << e.what();
+  }
   // The start must stay on the surface: on B's top only while B is under it.
   const Task far =
       parse_task_string(replaced(kStepYaml, "point: [1.5, 0, 2]", "point: [3.2, 0, 2]"), "s.yaml");

@@ -11,13 +11,6 @@
 namespace cmt {
 namespace {
 
-// A piece as a convex set: 1 point, a segment (2), or a convex planar polygon (3+, counter-clockwise about
-// `normal`).
-struct ConvexPiece {
-  std::vector<Vec3> points;
-  Vec3 normal = Vec3::UnitZ();
-};
-
 // The convex hull of planar points (Andrew's monotone chain in the plane's own basis).
 ConvexPiece planar_hull(const std::vector<Vec3>& pts) {
   ConvexPiece out;
@@ -60,52 +53,20 @@ ConvexPiece planar_hull(const std::vector<Vec3>& pts) {
   return out;
 }
 
+}  // namespace
+
 ConvexPiece convex_piece(const ReachedPiece& p) {
   if (p.polygon.size() >= 3) return planar_hull(p.polygon);
   return ConvexPiece{p.polygon, Vec3::UnitZ()};
 }
 
 double point_to_piece(const Vec3& p, const ConvexPiece& s) {
-  if (s.points.size() == 1) return (p - s.points[0]).norm();
-  if (s.points.size() == 2) return distance_to_segment(p, s.points[0], s.points[1]);
-  return distance_to_convex_polygon(p, s.points, s.normal);
+  return distance_between_convex_sets({p}, Vec3::UnitZ(), s.points, s.normal);
 }
-
-// 0 when segment [p, q] crosses the polygon's plane at a point of the polygon, else +infinity.
-double segment_crossing(const Vec3& p, const Vec3& q, const ConvexPiece& poly) {
-  const double sp = poly.normal.dot(p - poly.points[0]), sq = poly.normal.dot(q - poly.points[0]);
-  if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || sp == sq) return std::numeric_limits<double>::infinity();
-  const Vec3 x = p + (sp / (sp - sq)) * (q - p);
-  return distance_to_convex_polygon(x, poly.points, poly.normal);
-}
-
-std::vector<std::pair<Vec3, Vec3>> edges_of(const ConvexPiece& s) {
-  std::vector<std::pair<Vec3, Vec3>> out;
-  if (s.points.size() == 2) out.emplace_back(s.points[0], s.points[1]);
-  if (s.points.size() >= 3)
-    for (std::size_t i = 0; i < s.points.size(); ++i)
-      out.emplace_back(s.points[i], s.points[(i + 1) % s.points.size()]);
-  return out;
-}
-
-}  // namespace
 
 double piece_distance_lower_bound(const ReachedPiece& pa, const ReachedPiece& pb) {
   const ConvexPiece a = convex_piece(pa), b = convex_piece(pb);
-  if (a.points.empty() || b.points.empty()) return std::numeric_limits<double>::infinity();
-  // Between compact convex sets of dimension <= 2 the distance is attained at a vertex of one, at a pair of
-  // boundary edges, or (when they meet) where an edge of one crosses the other.
-  double best = std::numeric_limits<double>::infinity();
-  for (const Vec3& p : a.points) best = std::min(best, point_to_piece(p, b));
-  for (const Vec3& p : b.points) best = std::min(best, point_to_piece(p, a));
-  const auto ea = edges_of(a), eb = edges_of(b);
-  for (const auto& [p, q] : ea)
-    for (const auto& [r, s] : eb) best = std::min(best, distance_between_segments(p, q, r, s));
-  if (b.points.size() >= 3)
-    for (const auto& [p, q] : ea) best = std::min(best, segment_crossing(p, q, b));
-  if (a.points.size() >= 3)
-    for (const auto& [p, q] : eb) best = std::min(best, segment_crossing(p, q, a));
-  return best;
+  return distance_between_convex_sets(a.points, a.normal, b.points, b.normal);
 }
 
 bool confusable(const ReachedPiece& a, const FrictionCone& ca, const ReachedPiece& b, const FrictionCone& cb,

@@ -18,6 +18,16 @@ namespace cmt {
 // kGoalRelativeTolerance and the region kernel's rounding, docs/edr.md).
 inline constexpr double kEdrPositionRelativeMargin = 2e-6;
 
+// A piece as a convex set: 1 point, a segment (2), or a convex planar polygon (3+, counter-clockwise about
+// `normal`). A face region is taken as the convex hull of its outer boundary.
+struct ConvexPiece {
+  std::vector<Vec3> points;
+  Vec3 normal = Vec3::UnitZ();
+};
+ConvexPiece convex_piece(const ReachedPiece& piece);
+// Distance from p to the convex set (+infinity for an empty one). Floating point.
+double point_to_piece(const Vec3& p, const ConvexPiece& piece);
+
 // A lower bound on the distance between two pieces (ReachedSet::pieces: a face region, taken as the convex
 // hull of its outer boundary; a segment; a point). Floating point.
 double piece_distance_lower_bound(const ReachedPiece& a, const ReachedPiece& b);

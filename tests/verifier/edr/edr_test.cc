@@ -1,5 +1,6 @@
-// One-step EDR on slices (verifier/edr; Donald 1987 Example (1) as models/tasks/step_offset.yaml), under
-// Buckley's first-order model (the rollouts' model adds the contact lift and the servo coast; docs/edr.md).
+// EDR on slices (verifier/edr; Donald 1987 Example (1) as models/tasks/step_offset.yaml, Example (6) as
+// models/tasks/hole_width.yaml), under Buckley's first-order model (the rollouts' model adds the contact lift
+// and the servo coast; docs/edr.md).
 #include "verifier/edr/edr.h"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,49 @@ TEST(StepOffsetEdr, DownNeverReachesTheGoal) {
   EXPECT_FALSE(r.edr_reliable);
 }
 
+EdrResult run_hole_width(const std::vector<std::string>& motions) {
+  const auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole_width.yaml");
+  return verify_edr(task->task, motions, model_slices(task->task, 5), EdrOptions{});
+}
+
+// Donald's Example (6), the width alone: the hole (and the goal, its bottom) exists only for w > 1 (the peg
+// is 1 wide). The two-motion plan ends on the bottom there, and in the far corner (x = -6, z = 0) where the
+// hole is missing: 5.8 in or more from any goal, so the plan is EDR-reliable.
+TEST(HoleWidthEdr, TwoMotionPlanIsEdrReliableWithFailureInTheFarCorner) {
+  const EdrResult r = run_hole_width({"left", "down"});
+  // w = .5, 1.125, 1.75, 2.375, 3; the critical 1 (where the blocks' C-obstacles meet); the midpoints .75 and
+  // 2 of [.5, 1] and [1, 3].
+  ASSERT_EQ(r.slices.size(), 8u);
+  for (const EdrSlice& s : r.slices) {
+    const double w = s.values[0];
+    EXPECT_EQ(s.goal_empty, w <= 1) << w;
+    ASSERT_TRUE(s.terminates) << w << ": " << s.termination_problem;
+    if (w > 1) {
+      EXPECT_TRUE(s.failure_pieces.empty()) << w;
+      EXPECT_TRUE(s.reliable) << w;
+      for (const ReachedPiece& p : s.success->pieces())
+        for (const Vec3& q : p.polygon) EXPECT_NEAR(q.z(), -3, 1e-9) << w;
+    } else {
+      EXPECT_TRUE(s.success->empty()) << w;
+      ASSERT_FALSE(s.failure_pieces.empty()) << w;
+      for (const ReachedPiece& p : s.failure_pieces)
+        for (const Vec3& q : p.polygon) {
+          EXPECT_LE(q.x(), -6 + 0.6) << w;  // the corner, within the velocity error's spread
+          EXPECT_GE(q.z(), -1e-9) << w;
+        }
+    }
+  }
+  EXPECT_TRUE(r.edr_reliable) << r.reason;
+}
+
+// The first motion alone ends on the hole's left wall: never in the goal (Donald: success is not yet
+// recognizable after it).
+TEST(HoleWidthEdr, TheFirstMotionAloneNeverReachesTheGoal) {
+  const EdrResult r = run_hole_width({"left"});
+  EXPECT_FALSE(r.reaches_goal);
+  EXPECT_FALSE(r.edr_reliable);
+}
+
 ReachedPiece piece(std::vector<Vec3> points) {
   ReachedPiece p;
   p.polygon = std::move(points);
@@ -87,6 +131,8 @@ TEST(PieceDistance, HandChecked) {
               2, 1e-12);
   // A segment piercing the square's interior: 0.
   EXPECT_NEAR(piece_distance_lower_bound(square, piece({{0.5, 0.5, -1}, {0.5, 0.5, 1}})), 0, 1e-12);
+  EXPECT_NEAR(piece_distance_lower_bound(piece({{0.5, 0.5, -1}, {0.5, 0.5, 1}}), square), 0,
+              1e-12);  // symmetric
   // A segment crossing above an edge: edge to edge, 3 up and across x = 1.
   EXPECT_NEAR(piece_distance_lower_bound(square, piece({{1, -1, 3}, {1, 2, 3}})), 3, 1e-12);
   // A point beside a corner.

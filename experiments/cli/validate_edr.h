@@ -1,0 +1,26 @@
+// `cmt validate TASK --strategy NAME --edr -n N --seed S [--per-world K] [--resolution R] [--mode M]
+// [--threads T] --json` (contracts.md): an EDR strategy against MuJoCo rollouts in worlds drawn uniformly
+// over the model parameters' intervals (experiments/edr/edr_check.h, docs/edr.md "Physics check"). The
+// strategy's last motion must carry the EDR termination predicate (`edr: true`).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "controllers/error_model.h"
+
+namespace cmt {
+
+struct ValidateEdrOptions {
+  std::string task, strategy;
+  int rollouts = 1000, per_world = 20, resolution = 5, threads = 1;
+  std::uint64_t seed = 1;
+  SampleMode mode = SampleMode::kUniform;
+  bool json = false;
+};
+
+// Prints the result and returns the exit status: 1 when physics contradicts the verifier (a motion end
+// outside a world's predicted termination set, or a forbidden outcome of a strategy verified EDR-reliable),
+// else 0. Bad input throws TaskError.
+int validate_edr(const ValidateEdrOptions& options);
+
+}  // namespace cmt
