@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   cmt::add_plan_command(app, state);
   cmt::add_backproject_command(app, state);
   cmt::add_edr_command(app, state);
+  cmt::add_plan_edr_command(app, state);
 
   bool wants_json = false;
   for (int i = 1; i < argc; ++i) wants_json = wants_json || std::string(argv[i]) == "--json";

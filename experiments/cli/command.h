@@ -31,5 +31,6 @@ void add_teach_command(CLI::App& app, CommandState& state);
 void add_plan_command(CLI::App& app, CommandState& state);
 void add_backproject_command(CLI::App& app, CommandState& state);
 void add_edr_command(CLI::App& app, CommandState& state);
+void add_plan_edr_command(CLI::App& app, CommandState& state);
 
 }  // namespace cmt

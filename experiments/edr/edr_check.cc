@@ -22,8 +22,8 @@ constexpr const char* kEdrOutcomes[] = {"success",       "failure_signalled", "f
                                         "false_failure", "missed_success",    "timeout",
                                         "unstable"};
 
-// The verifier's terminations in the goal over all slices, each as a convex set with its atom's friction
-// cone.
+// The verifier's terminations in the goal over all slices and the sweeps between adjacent ones (edr.h), each
+// as a convex set with its atom's friction cone.
 struct GoalPiece {
   ConvexPiece hull;
   FrictionCone cone;
@@ -36,6 +36,8 @@ std::vector<GoalPiece> goal_terminations(const EdrResult& verdict) {
     for (const ReachedPiece& p : s.success->pieces())
       out.push_back({convex_piece(p), atom_friction_cone(s.task->cspace, p.atom)});
   }
+  for (const SlicePiece& p : verdict.swept_success)
+    out.push_back({convex_piece(p.piece), atom_friction_cone(*p.cspace, p.piece.atom)});
   return out;
 }
 
@@ -195,7 +197,7 @@ EdrCheck check_edr(const Task& task, const std::string& strategy_name, const Edr
   const std::vector<GoalPiece> goal = goal_terminations(verdict);
   double scale = 0;
   for (const EdrSlice& s : verdict.slices) scale = std::max(scale, s.task->cspace.scale());
-  const double margin = kEdrPositionRelativeMargin * scale;
+  const double margin = kEdrContactRelativeSlack * scale;
   const Strategy& strategy = task.strategy_named(strategy_name);
   std::mt19937_64 worlds_rng(options.seed);
   const int per_world = std::max(1, options.rollouts_per_world);

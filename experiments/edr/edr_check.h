@@ -13,8 +13,9 @@
 //  - timeout: a motion did not terminate; unstable: the simulation broke (not classified).
 // The predicate (the robot's own test after the last motion): a fresh sensing draw (position offset within
 // eps_s, force direction turned by up to theta_f; on the bounds in extreme mode) is consistent with a
-// termination in the goal of some slice of the verifier's result: within eps_s of one of its pieces (a face
-// region as the hull of its outline) with the sensed force within theta_f of that atom's friction cone.
+// termination in the goal of some slice of the verifier's result, or of the sweep between two adjacent slices
+// (verifier/edr/edr.h EdrResult::swept_success): within eps_s of one of its pieces (a face region as the hull
+// of its outline) with the sensed force within theta_f of that atom's friction cone.
 #pragma once
 #include <cstdint>
 #include <nlohmann/json.hpp>

@@ -108,6 +108,15 @@ nlohmann::json edr_verdict_json(const Task& task, const EdrVerdictRequest& reque
   nlohmann::json slices = nlohmann::json::array(), confusions = nlohmann::json::array();
   for (const EdrSlice& s : r.slices) slices.push_back(slice_json(task, s));
   for (const EdrConfusion& c : r.confusions) confusions.push_back(confusion_json(r, c));
+  auto swept_json = [&](const std::vector<SlicePiece>& pieces) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const SlicePiece& p : pieces) {
+      nlohmann::json piece = pieces_json(*r.slices[p.slice].task, {p.piece})[0];
+      piece["slice"] = p.slice;
+      out.push_back(piece);
+    }
+    return out;
+  };
   return {{"task", task.name},
           {"strategy", request.strategy},
           {"motions", task.strategy_named(request.strategy).motions},
@@ -120,6 +129,8 @@ nlohmann::json edr_verdict_json(const Task& task, const EdrVerdictRequest& reque
           {"distinguishable", r.distinguishable},
           {"confusions", confusions},
           {"confusion_count", r.confusion_count},
+          {"swept_success", swept_json(r.swept_success)},
+          {"swept_failure", swept_json(r.swept_failure)},
           {"edr_reliable", r.edr_reliable},
           {"reason", r.reason}};
 }

@@ -229,6 +229,7 @@ std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::pat
     if (j.is_object() && j.contains("verdict") && j["verdict"].is_object() && j.contains("outcomes")) {
       nlohmann::json verdict = j["verdict"];
       j.erase("verdict");
+      if (j.contains("seconds")) verdict["seconds"] = j["seconds"];
       verdict["check"] = std::move(j);
       j = std::move(verdict);
     }

@@ -163,5 +163,47 @@ TEST(CmtRolloutWorld, BadWorldsExitTwo) {
   EXPECT_EQ(run(base + " --world alpha").status, 2);
 }
 
+// LIMITED's search on step_offset: a one-motion plan, re-verified on the fine slices, written with -o as a
+// strategy that `cmt verify --edr` accepts and finds EDR-reliable.
+TEST(CmtPlanEdr, StepOffsetOneMotionPlanVerifies) {
+  const auto path = std::filesystem::temp_directory_path() / "cmt_plan_edr_step.yaml";
+  const Result r = run("plan-edr " + task("step_offset") + " --json -o " + path.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["found"].get<bool>());
+  ASSERT_EQ(j["strategy"].size(), 1u);
+  EXPECT_TRUE(j["verdict"]["edr_reliable"].get<bool>());
+  const Result v = run("verify " + path.string() + " --strategy " + j["strategy_name"].get<std::string>() +
+                       " --edr --json");
+  EXPECT_EQ(v.status, 0) << v.out;
+  std::filesystem::remove(path);
+}
+
+// Algorithm Multi on hole_width, two-motion plans only: the first motion's push-forward (its terminations in
+// every slice) starts the second; the pair is EDR-reliable on the fine slices.
+// The plan's physics check: 200 rollouts in 10 worlds drawn over the width, none forbidden (its second
+// motion stops in the bottom's right edge, which moves with the width: the predicate needs the sweep between
+// slices, docs/edr.md "Between slices").
+TEST(CmtPlanEdr, HoleWidthTwoMotionPlanPassesThePhysicsCheck) {
+  const auto path = std::filesystem::temp_directory_path() / "cmt_plan_edr_hole.yaml";
+  const Result r = run("plan-edr " + task("hole_width") + " --min-motions 2 --json -o " + path.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["motions"].size(), 2u);
+  EXPECT_TRUE(j["verdict"]["edr_reliable"].get<bool>());
+  for (const auto& s : j["verdict"]["slices"])
+    EXPECT_EQ(s["goal_empty"].get<bool>(), s["params"]["hole_width"].get<double>() <= 1);
+  const Result v = run("validate " + path.string() +
+                       " --strategy plan_edr --edr -n 200 --per-world 20 --mode "
+                       "extreme --seed 3 --json");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const auto check = nlohmann::json::parse(v.out);
+  EXPECT_EQ(check["outcomes"]["false_success"].get<int>(), 0);
+  EXPECT_EQ(check["outcomes"]["false_failure"].get<int>(), 0);
+  EXPECT_GT(check["outcomes"]["success"].get<int>(), 0);
+  EXPECT_GT(check["outcomes"]["failure_signalled"].get<int>(), 0);
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace cmt::test

@@ -12,9 +12,26 @@ namespace cmt {
 namespace {
 
 // The convex hull of planar points (Andrew's monotone chain in the plane's own basis).
+// A unit normal of the plane through planar points in any order (zero when they are collinear): from the
+// point farthest from the first and the point farthest from the line through both.
+Vec3 plane_normal(const std::vector<Vec3>& pts) {
+  if (pts.size() < 3) return Vec3::Zero();
+  std::size_t far = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    if ((pts[i] - pts[0]).squaredNorm() > (pts[far] - pts[0]).squaredNorm()) far = i;
+  const Vec3 d = pts[far] - pts[0];
+  if (d.norm() == 0) return Vec3::Zero();
+  Vec3 best = Vec3::Zero();
+  for (const Vec3& p : pts) {
+    const Vec3 c = d.cross(p - pts[0]);
+    if (c.norm() > best.norm()) best = c;
+  }
+  return best.norm() > 1e-12 * d.squaredNorm() ? Vec3(best.normalized()) : Vec3(Vec3::Zero());
+}
+
 ConvexPiece planar_hull(const std::vector<Vec3>& pts) {
   ConvexPiece out;
-  Vec3 n = polygon_normal(pts);
+  Vec3 n = plane_normal(pts);
   if (!(n.norm() > 0.5)) {  // collinear: the two points farthest apart
     std::size_t bi = 0, bj = 0;
     double best = -1;

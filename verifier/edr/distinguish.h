@@ -13,10 +13,16 @@
 
 namespace cmt {
 
+// How far, as a fraction of the scene scale, a physical robot at rest may lie from the C-space point it
+// stands for: the rollouts' contact tolerance (sim/rollout.h kAtomRelativeTolerance, 30x MuJoCo's largest
+// resting penetration and slip hop). The EDR predicate accepts a sensed position within eps_s plus this of a
+// goal termination (experiments/edr/edr_check.h): a robot that stopped at a goal termination, sunk into the
+// face, is still recognized.
+inline constexpr double kEdrContactRelativeSlack = 1e-4;
 // Added to 2 eps_s as a fraction of the larger scene scale: a pair is position-distinguishable only when its
-// distance bound exceeds 2 eps_s by more than this (covering the goal containment tolerance
-// kGoalRelativeTolerance and the region kernel's rounding, docs/edr.md).
-inline constexpr double kEdrPositionRelativeMargin = 2e-6;
+// distance bound exceeds 2 eps_s by more than this: the predicate's slack above on both sides, and 2e-6 for
+// the goal containment tolerance kGoalRelativeTolerance and the region kernel's rounding (docs/edr.md).
+inline constexpr double kEdrPositionRelativeMargin = 2 * kEdrContactRelativeSlack + 2e-6;
 
 // A piece as a convex set: 1 point, a segment (2), or a convex planar polygon (3+, counter-clockwise about
 // `normal`). A face region is taken as the convex hull of its outer boundary.

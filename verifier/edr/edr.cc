@@ -1,6 +1,7 @@
 #include "verifier/edr/edr.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
@@ -8,6 +9,9 @@
 
 namespace cmt {
 namespace {
+
+// Sweeps between adjacent slices are formed up to this many slices (the pairing is quadratic).
+constexpr std::size_t kMaxSweptSlices = 2000;
 
 // Why the motions may fail to terminate in a slice ("" when they terminate): EDR needs every motion to end.
 std::string termination_failure(const VerifyResult& result, std::size_t motions) {
@@ -63,7 +67,7 @@ EdrSlice simulate_slice(const Task& task, const std::vector<std::string>& motion
   s.success = std::make_shared<const ReachedSet>(last.termination.intersected(goal));
   s.failure_pieces = pieces_outside_goal(lt, last.termination);
   for (const ReachedPiece& p : s.failure_pieces) s.failure_area += p.area;
-  add_preimages(lt, goal, *lt.task.find_motion(motions.back()), options, &s);
+  if (options.preimages) add_preimages(lt, goal, *lt.task.find_motion(motions.back()), options, &s);
   return s;
 }
 
@@ -77,8 +81,69 @@ EdrSlice run_slice(const Task& task, const std::vector<std::string>& motions,
   }
 }
 
-// (c): every termination in G against every point of H, over all pairs of slices. Every pair is tested (the
-// per-slice flags need them all); the first confusion_limit confusable pairs are listed.
+// Pairs of slices that differ in exactly one parameter, at consecutive values of it among the slices'.
+std::vector<std::pair<int, int>> adjacent_slices(const std::vector<EdrSlice>& slices) {
+  std::vector<std::pair<int, int>> out;
+  if (slices.empty() || slices.size() > kMaxSweptSlices) return out;
+  const std::size_t params = slices.front().values.size();
+  for (std::size_t p = 0; p < params; ++p) {
+    std::vector<double> values;
+    for (const EdrSlice& s : slices) values.push_back(s.values[p]);
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    auto rank = [&](double v) { return std::lower_bound(values.begin(), values.end(), v) - values.begin(); };
+    for (std::size_t i = 0; i < slices.size(); ++i)
+      for (std::size_t j = 0; j < slices.size(); ++j) {
+        bool others_equal = true;
+        for (std::size_t q = 0; q < params; ++q)
+          others_equal = others_equal && (q == p || slices[i].values[q] == slices[j].values[q]);
+        if (others_equal && rank(slices[j].values[p]) == rank(slices[i].values[p]) + 1)
+          out.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      }
+  }
+  return out;
+}
+
+// Do the points lie in one plane (within tol)? Collinear and coincident points do.
+bool coplanar(const std::vector<Vec3>& points, double tol) {
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 1; i < points.size() && n.norm() < 1e-12; ++i)
+    for (std::size_t j = i + 1; j < points.size() && n.norm() < 1e-12; ++j) {
+      const Vec3 c = (points[i] - points[0]).cross(points[j] - points[0]);
+      if (c.norm() > 1e-9 * (points[i] - points[0]).norm() * (points[j] - points[0]).norm())
+        n = c.normalized();
+    }
+  if (n.norm() < 0.5) return true;
+  for (const Vec3& q : points)
+    if (std::abs(n.dot(q - points[0])) > tol) return false;
+  return true;
+}
+
+// The swept pieces between adjacent slices (EdrResult::swept_success): `pieces(i)` gives slice i's.
+template <class Pieces>
+std::vector<SlicePiece> swept(const std::vector<EdrSlice>& slices, const Pieces& pieces) {
+  std::vector<SlicePiece> out;
+  for (const auto& [i, j] : adjacent_slices(slices)) {
+    if (!slices[i].termination || !slices[j].termination) continue;
+    const double tol = kGoalRelativeTolerance * slices[i].task->cspace.scale();
+    for (const ReachedPiece& a : pieces(i))
+      for (const ReachedPiece& b : pieces(j)) {
+        if (a.atom != b.atom || a.kind != b.kind) continue;
+        std::vector<Vec3> points = a.polygon;
+        points.insert(points.end(), b.polygon.begin(), b.polygon.end());
+        if (points.empty() || !coplanar(points, tol)) continue;
+        ReachedPiece hull = a;
+        hull.polygon = convex_piece(ReachedPiece{a.atom, a.kind, points, {}, 0}).points;
+        hull.holes.clear();
+        out.push_back({&slices[i].task->cspace, i, hull});
+      }
+  }
+  return out;
+}
+
+// (c): every termination in G against every point of H, over all pairs of slices and the sweeps between
+// adjacent ones. Every pair is tested (the per-slice flags need them all); the first confusion_limit
+// confusable pairs are listed.
 void check_distinguishable(const Task& task, const EdrOptions& options, EdrResult* out) {
   std::vector<SlicePiece> success, failure;
   double scale = 0;
@@ -90,6 +155,10 @@ void check_distinguishable(const Task& task, const EdrOptions& options, EdrResul
     for (const ReachedPiece& p : s.failure_pieces)
       failure.push_back({&s.task->cspace, static_cast<int>(i), p});
   }
+  out->swept_success = swept(out->slices, [&](int i) { return out->slices[i].success->pieces(); });
+  out->swept_failure = swept(out->slices, [&](int i) { return out->slices[i].failure_pieces; });
+  success.insert(success.end(), out->swept_success.begin(), out->swept_success.end());
+  failure.insert(failure.end(), out->swept_failure.begin(), out->swept_failure.end());
   const std::vector<Confusion> pairs = confusable_pairs(
       success, failure, task.uncertainty.eps_s, task.uncertainty.theta_f, kEdrPositionRelativeMargin * scale);
   out->distinguishable = pairs.empty();

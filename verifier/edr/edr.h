@@ -57,6 +57,8 @@ struct EdrOptions {
   std::function<VerifyOptions(const LoadedTask&)> verify = [](const LoadedTask&) { return VerifyOptions{}; };
   std::function<double(const LoadedTask&)> backprojection_margin = [](const LoadedTask&) { return 0.0; };
   std::size_t confusion_limit = 20;  // confusable pairs listed (the verdict counts them all)
+  // The preimages P and P~ (reported, not needed by the verdict (a)-(c)); the planner's search skips them.
+  bool preimages = true;
 };
 
 struct EdrConfusion {
@@ -67,6 +69,13 @@ struct EdrConfusion {
 
 struct EdrResult {
   std::vector<EdrSlice> slices;
+  // Between adjacent slices (differing in one parameter, at consecutive values) the terminations in G and in
+  // H sweep: per atom that both slices' pieces lie on, the convex hull of the two pieces when they are
+  // coplanar (a face or edge that translates with the parameter, e.g. a hole's bottom edge as its width
+  // grows). The verdict's test (c) and the EDR predicate (experiments/edr/edr_check.h) use the swept pieces
+  // beside the slices' own, so that a world between two slices is judged too (its terminations lie in the
+  // sweep when its pieces move affinely and keep their atoms; docs/edr.md "Between slices").
+  std::vector<SlicePiece> swept_success, swept_failure;
   bool terminates = true;       // (a)
   bool reaches_goal = false;    // (b)
   bool distinguishable = true;  // (c)
