@@ -108,6 +108,17 @@ TEST(HoleWidthEdr, TwoMotionPlanIsEdrReliableWithFailureInTheFarCorner) {
     }
   }
   EXPECT_TRUE(r.edr_reliable) << r.reason;
+  // Between adjacent slices with a goal, its stops sweep: per atom the hull of both slices' pieces, e.g. the
+  // strip of the bottom between two positions of the right wall's foot edge. Every world between the slices
+  // stops in it, so the EDR predicate recognizes it there too.
+  ASSERT_FALSE(r.swept_success.empty());
+  bool strip = false;
+  for (const SlicePiece& p : r.swept_success) {
+    EXPECT_GE(p.slice, 3);  // from the first slice with a goal on
+    for (const Vec3& q : p.piece.polygon) EXPECT_NEAR(q.z(), -3, 1e-9);
+    strip = strip || p.piece.polygon.size() == 4;
+  }
+  EXPECT_TRUE(strip);
 }
 
 // The first motion alone ends on the hole's left wall: never in the goal (Donald: success is not yet
@@ -137,6 +148,9 @@ TEST(PieceDistance, HandChecked) {
   EXPECT_NEAR(piece_distance_lower_bound(square, piece({{1, -1, 3}, {1, 2, 3}})), 3, 1e-12);
   // A point beside a corner.
   EXPECT_NEAR(piece_distance_lower_bound(square, piece({{2, 2, 0}})), std::sqrt(2.0), 1e-12);
+  // Points in any order: a "bow-tie" listing of a rectangle is the rectangle (its centre at distance 0).
+  const ReachedPiece bow_tie = piece({{0, -3, 0}, {0, 3, 0}, {1, -3, 0}, {1, 3, 0}});
+  EXPECT_EQ(piece_distance_lower_bound(bow_tie, piece({{0.5, 0, 0}})), 0);
   // A non-convex outline counts as its hull (a lower bound): the point in the notch is at distance 0.
   const ReachedPiece ell = piece({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}});
   EXPECT_EQ(piece_distance_lower_bound(ell, piece({{1.4, 1.4, 0}})), 0);
