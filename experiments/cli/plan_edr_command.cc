@@ -14,6 +14,7 @@
 #include "experiments/edr/edr_plan_task.h"
 #include "experiments/edr/edr_verdict.h"
 #include "experiments/validation/verifier_model.h"
+#include "models/model_error.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
 #include "verifier/edr/edr_plan.h"
@@ -79,12 +80,15 @@ void run_plan_edr(const PlanEdrCli& cli, CommandState& state) {
   const TaskWithDampers with_dampers = [&](const std::vector<Vec3>& directions) {
     return parse_task_string(task_yaml_with_dampers(text, task->task, directions), cli.task);
   };
-  EdrPlan plan;
-  try {
-    plan = plan_edr(task->task, with_dampers, options);
-  } catch (const std::invalid_argument& e) {  // too many slices
-    throw TaskError(cli.task, "--fine", e.what());
+  for (const auto& [resolution, option] :
+       {std::pair{options.coarse_resolution, "--coarse"}, std::pair{options.fine_resolution, "--fine"}}) {
+    try {
+      model_slices(task->task, resolution);
+    } catch (const std::invalid_argument& e) {  // too many slices
+      throw TaskError(cli.task, option, e.what());
+    }
   }
+  const EdrPlan plan = plan_edr(task->task, with_dampers, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json out = plan_json(cli, task->task, text, plan, seconds);
   if (state.json) {
@@ -116,7 +120,8 @@ void add_plan_edr_command(CLI::App& app, CommandState& state) {
       ->check(CLI::Range(0.01, 1.6));
   cmd->add_option("--angle-steps", cli->options.angle_steps, "candidates on each side (default 6)")
       ->check(CLI::Range(0, 50));
-  cmd->add_option("--budget", cli->options.max_verdicts, "coarse verdicts before giving up (default 400)")
+  cmd->add_option("--budget", cli->options.max_verdicts,
+                  "coarse verdicts before giving up (default 400; the fine re-verifications are not counted)")
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--first-order", cli->first_order, "Buckley's first-order model instead of the rollouts'");
   cmd->add_option("-o", cli->out, "write the task with the plan added as a strategy");
@@ -124,6 +129,8 @@ void add_plan_edr_command(CLI::App& app, CommandState& state) {
   cmd->callback([cli, &state] {
     if (cli->options.min_motions > cli->options.max_motions)
       throw CLI::ValidationError("--min-motions", "must be <= --max-motions");
+    if (cli->options.angle_steps * cli->options.angle_step > 3.1416)
+      throw CLI::ValidationError("--angle-steps", "--angle-steps x --angle-step must be at most pi");
     run_plan_edr(*cli, state);
   });
 }

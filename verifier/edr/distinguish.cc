@@ -9,11 +9,8 @@
 #include "verifier/sensing.h"
 
 namespace cmt {
-namespace {
+namespace {}  // namespace
 
-// The convex hull of planar points (Andrew's monotone chain in the plane's own basis).
-// A unit normal of the plane through planar points in any order (zero when they are collinear): from the
-// point farthest from the first and the point farthest from the line through both.
 Vec3 plane_normal(const std::vector<Vec3>& pts) {
   if (pts.size() < 3) return Vec3::Zero();
   std::size_t far = 0;
@@ -29,6 +26,9 @@ Vec3 plane_normal(const std::vector<Vec3>& pts) {
   return best.norm() > 1e-12 * d.squaredNorm() ? Vec3(best.normalized()) : Vec3(Vec3::Zero());
 }
 
+namespace {
+
+// The convex hull of planar points (Andrew's monotone chain in the plane's own basis).
 ConvexPiece planar_hull(const std::vector<Vec3>& pts) {
   ConvexPiece out;
   Vec3 n = plane_normal(pts);

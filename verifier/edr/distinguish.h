@@ -31,6 +31,9 @@ struct ConvexPiece {
   Vec3 normal = Vec3::UnitZ();
 };
 ConvexPiece convex_piece(const ReachedPiece& piece);
+// A unit normal of the plane through points in any order, zero when they are collinear (or fewer than 3):
+// from the point farthest from the first and the point farthest from the line through both.
+Vec3 plane_normal(const std::vector<Vec3>& points);
 // Distance from p to the convex set (+infinity for an empty one). Floating point.
 double point_to_piece(const Vec3& p, const ConvexPiece& piece);
 

@@ -106,28 +106,33 @@ std::vector<std::pair<int, int>> adjacent_slices(const std::vector<EdrSlice>& sl
 
 // Do the points lie in one plane (within tol)? Collinear and coincident points do.
 bool coplanar(const std::vector<Vec3>& points, double tol) {
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 1; i < points.size() && n.norm() < 1e-12; ++i)
-    for (std::size_t j = i + 1; j < points.size() && n.norm() < 1e-12; ++j) {
-      const Vec3 c = (points[i] - points[0]).cross(points[j] - points[0]);
-      if (c.norm() > 1e-9 * (points[i] - points[0]).norm() * (points[j] - points[0]).norm())
-        n = c.normalized();
-    }
-  if (n.norm() < 0.5) return true;
+  const Vec3 n = plane_normal(points);
+  if (n.isZero()) return true;
   for (const Vec3& q : points)
     if (std::abs(n.dot(q - points[0])) > tol) return false;
   return true;
 }
 
+// The area of a convex polygon (0 for fewer than 3 points).
+double convex_area(const std::vector<Vec3>& polygon) {
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t k = 0; k + 2 < polygon.size(); ++k)
+    sum += (polygon[k + 1] - polygon[0]).cross(polygon[k + 2] - polygon[0]);
+  return 0.5 * sum.norm();
+}
+
 // The swept pieces between adjacent slices (EdrResult::swept_success): `pieces(i)` gives slice i's.
+// A swept piece keeps slice i's index, C-space and the atom (whose friction cone it stands for); its polygon
+// is the hull, its area the hull's.
 template <class Pieces>
 std::vector<SlicePiece> swept(const std::vector<EdrSlice>& slices, const Pieces& pieces) {
   std::vector<SlicePiece> out;
   for (const auto& [i, j] : adjacent_slices(slices)) {
     if (!slices[i].termination || !slices[j].termination) continue;
     const double tol = kGoalRelativeTolerance * slices[i].task->cspace.scale();
-    for (const ReachedPiece& a : pieces(i))
-      for (const ReachedPiece& b : pieces(j)) {
+    const std::vector<ReachedPiece> first = pieces(i), second = pieces(j);
+    for (const ReachedPiece& a : first)
+      for (const ReachedPiece& b : second) {
         if (a.atom != b.atom || a.kind != b.kind) continue;
         std::vector<Vec3> points = a.polygon;
         points.insert(points.end(), b.polygon.begin(), b.polygon.end());
@@ -135,6 +140,7 @@ std::vector<SlicePiece> swept(const std::vector<EdrSlice>& slices, const Pieces&
         ReachedPiece hull = a;
         hull.polygon = convex_piece(ReachedPiece{a.atom, a.kind, points, {}, 0}).points;
         hull.holes.clear();
+        hull.area = convex_area(hull.polygon);
         out.push_back({&slices[i].task->cspace, i, hull});
       }
   }

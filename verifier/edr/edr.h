@@ -74,7 +74,9 @@ struct EdrResult {
   // coplanar (a face or edge that translates with the parameter, e.g. a hole's bottom edge as its width
   // grows). The verdict's test (c) and the EDR predicate (experiments/edr/edr_check.h) use the swept pieces
   // beside the slices' own, so that a world between two slices is judged too (its terminations lie in the
-  // sweep when its pieces move affinely and keep their atoms; docs/edr.md "Between slices").
+  // sweep when its pieces move affinely and keep their atoms; docs/edr.md "Between slices"). Only along one
+  // parameter at a time (grid edges, not the inside of a cell of several parameters), and none for more
+  // than 2000 slices.
   std::vector<SlicePiece> swept_success, swept_failure;
   bool terminates = true;       // (a)
   bool reaches_goal = false;    // (b)
