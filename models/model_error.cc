@@ -110,9 +110,15 @@ AffineValue parse_affine(const std::string& text, const std::vector<ModelParamet
   }
 }
 
+bool ModelParameter::admits(double v) const {
+  if (!(v >= min && v <= max)) return false;
+  return values.empty() || std::find(values.begin(), values.end(), v) != values.end();
+}
+
 std::vector<double> critical_values(const Task& task, std::size_t p) {
   const ModelParameter& param = task.model_error.at(p);
   std::vector<double> roots;
+  if (param.discrete()) return roots;
   // Coordinates per axis: the constant ones once each (at the nominal values of the other parameters).
   for (int axis = 0; axis < 3; ++axis) {
     // (value at nominal without p, coefficient of p) per coordinate role.
@@ -156,6 +162,7 @@ std::vector<double> critical_values(const Task& task, std::size_t p) {
 std::vector<double> slice_values(const Task& task, std::size_t p, int resolution) {
   const ModelParameter& param = task.model_error.at(p);
   if (resolution < 1) throw std::invalid_argument("the slice resolution must be >= 1");
+  if (param.discrete()) return param.values;
   std::vector<double> values;
   if (resolution == 1) {
     values.push_back(param.nominal);

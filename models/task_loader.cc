@@ -124,7 +124,8 @@ class Parser {
     return s.str();
   }
 
-  // model_error: {name: [min, max]} or {name: {interval: [min, max], nominal: v}} (docs/task-format.md).
+  // model_error: {name: [min, max]}, {name: {interval: [min, max], nominal: v}} or {name: {values: [v1, v2,
+  // ...], nominal: v}} (docs/task-format.md).
   void parse_model_error(const Node& n, Task& task) const {
     const std::vector<std::string> names = n.keys();
     if (names.empty()) n.fail("no model parameters (omit model_error for a task without model error)");
@@ -133,23 +134,15 @@ class Parser {
       const Node item = n.at(name);
       if (!std::regex_match(name, std::regex("[a-z_][a-z0-9_]*")))
         item.fail("a model parameter name must match [a-z_][a-z0-9_]*");
-      ModelParameter p;
+      ModelParameter p = item.is_map() && item.has("values") ? parse_discrete_parameter(item)
+                                                             : parse_interval_parameter(item);
       p.name = name;
-      const Node interval = item.is_map() ? item.at("interval") : item;
-      if (item.is_map()) item.require_map({"interval", "nominal"});
-      const std::vector<double> ends = interval.numbers();
-      if (ends.size() != 2)
-        interval.fail("an interval is [min, max], got " + std::to_string(ends.size()) + " numbers");
-      p.min = ends[0];
-      p.max = ends[1];
-      if (!(p.min <= p.max)) interval.fail("min " + format(p.min) + " must be <= max " + format(p.max));
-      if (std::max(std::abs(p.min), std::abs(p.max)) > kMaxCoordinate)
-        interval.fail("magnitude exceeds " + format(kMaxCoordinate));
-      p.nominal = (p.min + p.max) / 2;
       if (item.is_map() && item.has("nominal")) {
         p.nominal = item.at("nominal").number();
-        if (p.nominal < p.min || p.nominal > p.max)
-          item.at("nominal").fail("must lie in [" + format(p.min) + ", " + format(p.max) + "]");
+        if (!p.admits(p.nominal))
+          item.at("nominal").fail(p.discrete()
+                                      ? "must be one of the values"
+                                      : "must lie in [" + format(p.min) + ", " + format(p.max) + "]");
       }
       task.model_error.push_back(p);
     }
@@ -159,11 +152,44 @@ class Parser {
     for (std::size_t i = 0; i < task.model_error.size(); ++i) {
       const ModelParameter& p = task.model_error[i];
       const double v = requested_values_ ? (*requested_values_)[i] : p.nominal;
-      if (!(v >= p.min && v <= p.max))
-        n.at(p.name).fail("slice value " + format(v) + " is outside [" + format(p.min) + ", " +
-                          format(p.max) + "]");
+      if (!p.admits(v))
+        n.at(p.name).fail("slice value " + format(v) +
+                          (p.discrete() ? " is not one of the values"
+                                        : " is outside [" + format(p.min) + ", " + format(p.max) + "]"));
       task.model_values.push_back(v);
     }
+  }
+  static ModelParameter parse_interval_parameter(const Node& item) {
+    ModelParameter p;
+    const Node interval = item.is_map() ? item.at("interval") : item;
+    if (item.is_map()) item.require_map({"interval", "nominal"});
+    const std::vector<double> ends = interval.numbers();
+    if (ends.size() != 2)
+      interval.fail("an interval is [min, max], got " + std::to_string(ends.size()) + " numbers");
+    p.min = ends[0];
+    p.max = ends[1];
+    if (!(p.min <= p.max)) interval.fail("min " + format(p.min) + " must be <= max " + format(p.max));
+    if (std::max(std::abs(p.min), std::abs(p.max)) > kMaxCoordinate)
+      interval.fail("magnitude exceeds " + format(kMaxCoordinate));
+    p.nominal = (p.min + p.max) / 2;
+    return p;
+  }
+  // A discrete parameter (a finite J, e.g. Donald's twin universe J = {1, 2}): increasing values.
+  static ModelParameter parse_discrete_parameter(const Node& item) {
+    item.require_map({"values", "nominal"});
+    const Node values = item.at("values");
+    ModelParameter p;
+    p.values = values.numbers();  // not empty
+    check_size(values, p.values.size(), kMaxModelSlices, "values");
+    for (std::size_t i = 0; i < p.values.size(); ++i) {
+      if (std::abs(p.values[i]) > kMaxCoordinate) values.fail("magnitude exceeds " + format(kMaxCoordinate));
+      if (i > 0 && !(p.values[i - 1] < p.values[i]))
+        values.fail("values must increase: " + format(p.values[i - 1]) + " then " + format(p.values[i]));
+    }
+    p.min = p.values.front();
+    p.max = p.values.back();
+    p.nominal = p.values.front();
+    return p;
   }
 
   // A coordinate: a number, or (with model_error, in the parts, the bounds and the goal) an affine expression

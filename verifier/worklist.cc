@@ -1,6 +1,8 @@
 // The damper projections' worklist (verifier/internal/worklist.h).
 #include "verifier/internal/worklist.h"
 
+#include <algorithm>
+
 namespace cmt::fp {
 
 DamperWorklist::DamperWorklist(ReachedSet::Impl& set) : r_(set) {
@@ -47,8 +49,13 @@ void DamperWorklist::add_interval(int ei, double t0, double t1) {
   std::vector<EdgeInterval> added;
   const double fresh = r_.add_interval(ei, t0, t1, &added);
   if (fresh < 0) return;
-  // Growth below the parameter slack is rounding, not reach: stored, not propagated.
-  if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
+  // Growth below the parameter slack, or no longer than kRegionGrowthCells region cells, is rounding, not
+  // reach: stored, not propagated. The face regions' outward rounding (up to 1.5 cells per overlay) reaches
+  // their closure's edges, so without the cell bound an edge could creep a cell per round through its faces.
+  const Edge& e = r_.cspace->edges()[ei];
+  const double rounding = std::max(4 * kEdgeParamSlack,
+                                   kRegionGrowthCells * region_cell(r_.cspace->scale()) / (e.b - e.a).norm());
+  if (fresh > rounding || (added.size() == 1 && added[0].t0 == added[0].t1))
     for (const EdgeInterval& iv : added) edge_[ei].push_back(iv);
 }
 

@@ -1,9 +1,10 @@
 // `cmt plan-edr TASK [--coarse K] [--fine K] [--max-motions M] [--min-motions M] [--angle-step A]
-// [--angle-steps N] [--first-order] [-o OUT.yaml] --json` (contracts.md): LIMITED's generate-and-test search
-// for an EDR strategy of one or two damper motions (verifier/edr/edr_plan.h, docs/edr.md "Planning").
-// `found`, `strategy` (the planned motions' names), `motions` (name, commanded), `verdicts` (coarse verdicts
-// computed), `verdict` (the fine slices' `cmt edr` object) or `reason`; -o writes the task with the plan
-// added as a strategy. Exit 0 found, 1 not, 2 bad input.
+// [--angle-steps N] [--guaranteed] [--first-order] [-o OUT.yaml] --json` (contracts.md): LIMITED's
+// generate-and-test search for an EDR strategy of one or two damper motions (verifier/edr/edr_plan.h,
+// docs/edr.md "Planning"). `found`, `strategy` (the planned motions' names), `motions` (name, commanded),
+// `verdicts` (coarse verdicts computed), `guaranteed` (success guaranteed in every slice with a goal),
+// `verdict` (the fine slices' `cmt edr` object) or `reason`; -o writes the task with the plan added as a
+// strategy. Exit 0 found, 1 not, 2 bad input.
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -58,6 +59,7 @@ nlohmann::json plan_json(const PlanEdrCli& cli, const Task& task, const std::str
   out["strategy"] = planned_task.strategy_named(name).motions;
   out["strategy_name"] = name;
   out["motions"] = motions;
+  out["guaranteed"] = guaranteed_where_goal_exists(plan.verdict);
   out["verdict"] = edr_verdict_json(planned_task, request, plan.verdict);
   if (!cli.out.empty()) {
     std::ofstream file(cli.out);
@@ -123,6 +125,8 @@ void add_plan_edr_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--budget", cli->options.max_verdicts,
                   "coarse verdicts before giving up (default 400; the fine re-verifications are not counted)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--guaranteed", cli->options.guaranteed,
+                "accept only plans guaranteed to succeed in every slice where the goal exists");
   cmd->add_flag("--first-order", cli->first_order, "Buckley's first-order model instead of the rollouts'");
   cmd->add_option("-o", cli->out, "write the task with the plan added as a strategy");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");

@@ -64,10 +64,12 @@ std::shared_ptr<const LoadedTask> task_in_world(std::shared_ptr<const LoadedTask
     const std::size_t p = parameter_index(t, item.substr(0, eq));
     values[p] = parameter_value(t, item, item.substr(eq + 1));
     const ModelParameter& m = t.model_error[p];
-    if (values[p] < m.min || values[p] > m.max)
+    if (!m.admits(values[p]))
       throw TaskError(t.source_file, "--world",
-                      m.name + " = " + item.substr(eq + 1) + " is outside its interval [" +
-                          std::to_string(m.min) + ", " + std::to_string(m.max) + "]");
+                      m.name + " = " + item.substr(eq + 1) +
+                          (m.discrete() ? " is not one of its values"
+                                        : " is outside its interval [" + std::to_string(m.min) + ", " +
+                                              std::to_string(m.max) + "]"));
   }
   return load_task_slice(t, values);
 }

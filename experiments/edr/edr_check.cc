@@ -83,7 +83,9 @@ bool signals_success(const Reading& r, const std::vector<GoalPiece>& goal, const
 std::vector<double> draw_world(const Task& task, std::mt19937_64& rng) {
   std::vector<double> values;
   for (const ModelParameter& p : task.model_error)
-    values.push_back(std::uniform_real_distribution<double>(p.min, p.max)(rng));
+    values.push_back(p.discrete()
+                         ? p.values[std::uniform_int_distribution<std::size_t>(0, p.values.size() - 1)(rng)]
+                         : std::uniform_real_distribution<double>(p.min, p.max)(rng));
   return values;
 }
 

@@ -1,5 +1,6 @@
 // The physics check of an EDR strategy (docs/edr.md "Physics check"): MuJoCo rollouts in worlds whose model
-// parameters are drawn uniformly over their whole intervals (not only at the verifier's slices), each world's
+// parameters are drawn uniformly over their whole intervals (not only at the verifier's slices; a discrete
+// parameter uniformly among its values), each world's
 // scene built from the task read at those values, the strategy run under the usual sampled bounded errors,
 // and every rollout's end classified by the EDR termination predicate against what happened:
 //  - success: the predicate signals success and the robot is in the world's goal;

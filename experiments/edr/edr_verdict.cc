@@ -41,6 +41,7 @@ nlohmann::json parameters_json(const Task& task, int resolution) {
                    {"min", m.min},
                    {"max", m.max},
                    {"nominal", m.nominal},
+                   {"discrete", m.discrete()},
                    {"critical", critical_values(task, p)},
                    {"values", slice_values(task, p, resolution)}});
   }
@@ -56,12 +57,14 @@ nlohmann::json slice_json(const Task& task, const EdrSlice& s) {
                         {"terminates", s.terminates},
                         {"reliable", s.reliable},
                         {"distinguishable", s.distinguishable},
+                        {"linked", s.linked},
                         {"contact_lift", s.options.contact_lift},
                         {"servo_coast", s.options.servo_coast}};
   if (!s.terminates) {
     out["termination_problem"] = s.termination_problem;
     return out;
   }
+  if (!s.linked) out["linking_problem"] = s.linking_problem;
   out["forward"] = pieces_json(lt, s.reached->pieces());
   out["forward_area"] = s.reached->area();
   out["termination_area"] = s.termination->area();
@@ -127,6 +130,7 @@ nlohmann::json edr_verdict_json(const Task& task, const EdrVerdictRequest& reque
           {"terminates", r.terminates},
           {"reaches_goal", r.reaches_goal},
           {"distinguishable", r.distinguishable},
+          {"linked", r.linked},
           {"confusions", confusions},
           {"confusion_count", r.confusion_count},
           {"swept_success", swept_json(r.swept_success)},

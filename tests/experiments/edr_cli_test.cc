@@ -163,6 +163,37 @@ TEST(CmtRolloutWorld, BadWorldsExitTwo) {
   EXPECT_EQ(run(base + " --world alpha").status, 2);
 }
 
+// A discrete parameter takes only its values: the twin universe's worlds are 1 and 2.
+TEST(CmtRolloutWorld, ADiscreteParameterTakesOnlyItsValues) {
+  const std::string base = "rollout " + task("twin_universe") + " --strategy edr -n 1 --json";
+  EXPECT_EQ(run(base + " --world universe=1").status, 0);
+  EXPECT_EQ(run(base + " --world universe=2").status, 1);  // runs; its rollout misses the absent goal
+  const Result between = run(base + " --world universe=1.5");
+  ASSERT_EQ(between.status, 2);
+  const auto j = nlohmann::json::parse(between.out);
+  EXPECT_EQ(j["error"]["key"], "--world");
+  EXPECT_NE(j["error"]["reason"].get<std::string>().find("not one of its values"), std::string::npos);
+}
+
+// Donald's Example (3): the two universes are the slices at any resolution; the two-step strategy is
+// EDR-reliable, the one-step command is not.
+TEST(CmtVerifyEdr, TwinUniverseNeedsTwoSteps) {
+  const Result r = run("verify " + task("twin_universe") + " --strategy edr --edr --resolution 9 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["edr_reliable"].get<bool>());
+  EXPECT_TRUE(j["linked"].get<bool>());
+  EXPECT_TRUE(j["parameters"][0]["discrete"].get<bool>());
+  EXPECT_EQ(j["parameters"][0]["values"], nlohmann::json::array({1.0, 2.0}));
+  EXPECT_EQ(j["parameters"][0]["critical"], nlohmann::json::array());
+  ASSERT_EQ(j["slices"].size(), 2u);
+  EXPECT_FALSE(j["slices"][0]["goal_empty"].get<bool>());
+  EXPECT_TRUE(j["slices"][1]["goal_empty"].get<bool>());
+  const Result one = run("verify " + task("twin_universe") + " --strategy one_step --edr --json");
+  ASSERT_EQ(one.status, 1) << one.out;
+  EXPECT_FALSE(nlohmann::json::parse(one.out)["edr_reliable"].get<bool>());
+}
+
 // LIMITED's search on step_offset: a one-motion plan, re-verified on the fine slices, written with -o as a
 // strategy that `cmt verify --edr` accepts and finds EDR-reliable.
 TEST(CmtPlanEdr, StepOffsetOneMotionPlanVerifies) {
@@ -202,6 +233,41 @@ TEST(CmtPlanEdr, HoleWidthTwoMotionPlanPassesThePhysicsCheck) {
   EXPECT_EQ(check["outcomes"]["false_failure"].get<int>(), 0);
   EXPECT_GT(check["outcomes"]["success"].get<int>(), 0);
   EXPECT_GT(check["outcomes"]["failure_signalled"].get<int>(), 0);
+  std::filesystem::remove(path);
+}
+
+// Algorithm Multi on the twin universe: no one-step plan among LIMITED's candidates; with --guaranteed a
+// two-step plan that succeeds wherever the goal exists (universe 1), and its physics check: every rollout in
+// universe 1 succeeds, every one in universe 2 signals failure.
+TEST(CmtPlanEdr, TwinUniverseHasAGuaranteedTwoStepPlanAndNoOneStepPlan) {
+  const Result none = run("plan-edr " + task("twin_universe") + " --max-motions 1 --json");
+  ASSERT_EQ(none.status, 1) << none.out;
+  EXPECT_FALSE(nlohmann::json::parse(none.out)["found"].get<bool>());
+  const auto path = std::filesystem::temp_directory_path() / "cmt_plan_edr_twin.yaml";
+  const Result r =
+      run("plan-edr " + task("twin_universe") + " --min-motions 2 --guaranteed --json -o " + path.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["motions"].size(), 2u);
+  EXPECT_TRUE(j["guaranteed"].get<bool>());
+  EXPECT_TRUE(j["verdict"]["edr_reliable"].get<bool>());
+  const Result v = run("validate " + path.string() +
+                       " --strategy plan_edr --edr -n 100 --per-world 10 --mode extreme --seed 2 --json");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const auto check = nlohmann::json::parse(v.out);
+  for (const auto& w : check["worlds"]) {
+    const auto& o = w["outcomes"];
+    if (w["params"][0].get<double>() == 1) {
+      EXPECT_EQ(o["failure_signalled"].get<int>(), 0);  // guaranteed: every rollout reaches the goal
+      EXPECT_EQ(o["timeout"].get<int>(), 0);
+    } else {
+      EXPECT_EQ(o["success"].get<int>(), 0);  // universe 2 has no goal
+    }
+  }
+  EXPECT_EQ(check["outcomes"]["false_success"].get<int>(), 0);
+  EXPECT_EQ(check["outcomes"]["false_failure"].get<int>(), 0);
+  EXPECT_EQ(check["outcomes"]["missed_success"].get<int>(), 0);
+  EXPECT_GT(check["outcomes"]["success"].get<int>(), 0);
   std::filesystem::remove(path);
 }
 

@@ -1020,6 +1020,14 @@ TEST(Report, EdrSectionListsSlicesAndTheCheck) {
       << md;
 }
 
+// The colour (0xrrggbb) of a figure's pixel at plot coordinates (x, y).
+int figure_color_at(const cmt::report::PlotCanvas& canvas, double x, double y) {
+  const cv::Point2d p = canvas.to_image({x, y});
+  const cv::Vec3b c =
+      canvas.image().at<cv::Vec3b>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
+  return (c[2] << 16) | (c[1] << 8) | c[0];  // BGR to 0xrrggbb
+}
+
 }  // namespace
 
 // The EDR figure: one stacked bar per world at its alpha, its outcome fractions in the outcomes' colours,
@@ -1034,12 +1042,7 @@ TEST(Report, EdrFigureStacksEachWorldsOutcomesAtItsValue) {
                         {{"params", {0.5}}, {"outcomes", {{"success", 6}, {"failure_signalled", 4}}}}}}}}};
   const auto canvas = cmt::report::draw_edr_figure(run, "step_offset / edr");
   ASSERT_TRUE(canvas.has_value());
-  auto color_at = [&](double x, double y) {
-    const cv::Point2d p = canvas->to_image({x, y});
-    const cv::Vec3b c =
-        canvas->image().at<cv::Vec3b>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
-    return (c[2] << 16) | (c[1] << 8) | c[0];  // BGR to 0xrrggbb
-  };
+  auto color_at = [&](double x, double y) { return figure_color_at(*canvas, x, y); };
   const int green = 0x009e73, blue = 0x0072b2;
   EXPECT_EQ(color_at(-0.5, 0.2), blue);  // all ten signalled failure
   EXPECT_EQ(color_at(-0.5, 0.9), blue);
@@ -1051,4 +1054,30 @@ TEST(Report, EdrFigureStacksEachWorldsOutcomesAtItsValue) {
   json without_check = run;
   without_check.erase("check");
   EXPECT_FALSE(cmt::report::draw_edr_figure(without_check, "x").has_value());
+}
+
+// A discrete parameter (the twin universe): worlds drawn at one value make one bar, its outcomes summed, and
+// the bars are wide (a fraction of the gap between the values).
+TEST(Report, EdrFigureMergesTheWorldsOfADiscreteValue) {
+  const json run = {
+      {"task", "twin_universe"},
+      {"strategy", "edr"},
+      {"parameters",
+       {{{"name", "universe"}, {"min", 1.0}, {"max", 2.0}, {"discrete", true}, {"critical", json::array()}}}},
+      {"check",
+       {{"worlds",
+         {{{"params", {1.0}}, {"outcomes", {{"success", 10}}}},
+          {{"params", {2.0}}, {"outcomes", {{"failure_signalled", 10}}}},
+          {{"params", {1.0}}, {"outcomes", {{"success", 2}, {"failure_signalled", 8}}}}}}}}};
+  const auto canvas = cmt::report::draw_edr_figure(run, "twin_universe / edr");
+  ASSERT_TRUE(canvas.has_value());
+  auto color_at = [&](double x, double y) { return figure_color_at(*canvas, x, y); };
+  const int green = 0x009e73, blue = 0x0072b2;
+  // Universe 1: 12 successes of 20, then 8 signalled failures.
+  EXPECT_EQ(color_at(1.0, 0.55), green);
+  EXPECT_EQ(color_at(1.0, 0.65), blue);
+  EXPECT_EQ(color_at(1.1, 0.3), green);  // 0.1 from the value: inside the wide bar
+  EXPECT_EQ(color_at(2.0, 0.5), blue);
+  EXPECT_NE(color_at(1.5, 0.5), green);  // nothing between the values
+  EXPECT_NE(color_at(1.5, 0.5), blue);
 }

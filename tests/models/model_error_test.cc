@@ -56,7 +56,7 @@ void expect_error(const std::string& yaml, const std::string& key, const std::st
 }
 
 TEST(ModelError, ParsesAffineExpressions) {
-  const std::vector<ModelParameter> params = {{"w", 0, 1, 0.5}, {"d", 0, 1, 0.5}};
+  const std::vector<ModelParameter> params = {{"w", 0, 1, 0.5, {}}, {"d", 0, 1, 0.5, {}}};
   const AffineValue a = parse_affine("-0.5*w + 2*d - 1", params);
   EXPECT_DOUBLE_EQ(a.constant, -1);
   EXPECT_EQ(a.coefficients, (std::vector<double>{-0.5, 2}));
@@ -65,7 +65,7 @@ TEST(ModelError, ParsesAffineExpressions) {
   EXPECT_DOUBLE_EQ(parse_affine("2*-w", params).at({1, 0}), -2);
   EXPECT_DOUBLE_EQ(parse_affine("2.e-3*w + 1E+1", params).at({1000, 0}), 12);
   EXPECT_DOUBLE_EQ(parse_affine(".5e1 - d", params).at({0, 1}), 4);
-  const std::vector<ModelParameter> named = {{"w2e", 0, 1, 0.5}};
+  const std::vector<ModelParameter> named = {{"w2e", 0, 1, 0.5, {}}};
   EXPECT_DOUBLE_EQ(parse_affine("w2e-1", named).at({3}), 2);  // a name ending in "2e" is not a mantissa
   EXPECT_DOUBLE_EQ(parse_affine(" -w ", params).at({0.25, 0}), -0.25);
   EXPECT_THROW(parse_affine("w + x", params), std::invalid_argument);
@@ -112,6 +112,40 @@ TEST(ModelError, BadModelErrorNamesTheKey) {
   std::string no_model =
       replaced(kStepYaml, "model_error:\n  alpha: {interval: [-1, 1], nominal: 0.5}\n", "");
   expect_error(no_model, "cspace[1].box.min[0]", "expected a number");
+}
+
+// A discrete parameter (Donald's twin universe, J = {1, 2}): each value is a world; slices take them all at
+// any resolution, with no critical values between them, and other values are not worlds.
+TEST(ModelError, ADiscreteParameterSlicesAtItsValues) {
+  const std::string yaml =
+      replaced(kStepYaml, "alpha: {interval: [-1, 1], nominal: 0.5}", "alpha: {values: [-1, 0.5, 1]}");
+  const Task t = parse_task_string(yaml, "step.yaml");
+  ASSERT_TRUE(t.model_error[0].discrete());
+  EXPECT_EQ(t.model_error[0].nominal, -1);  // the first value unless the file gives one
+  EXPECT_EQ(t.model_error[0].min, -1);
+  EXPECT_EQ(t.model_error[0].max, 1);
+  EXPECT_DOUBLE_EQ(t.cspace[1].box.min.x(), -1);
+  EXPECT_TRUE(critical_values(t, 0).empty());  // alpha = 0 is no world
+  for (int resolution : {1, 2, 5, 40})
+    EXPECT_EQ(slice_values(t, 0, resolution), (std::vector<double>{-1, 0.5, 1})) << resolution;
+  EXPECT_DOUBLE_EQ(task_at(t, {0.5}).cspace[1].box.min.x(), 0.5);
+  EXPECT_THROW(task_at(t, {0.0}), TaskError);  // inside [min, max] but not a value
+  EXPECT_TRUE(t.model_error[0].admits(0.5));
+  EXPECT_FALSE(t.model_error[0].admits(0.25));
+  const Task nominal =
+      parse_task_string(replaced(yaml, "[-1, 0.5, 1]}", "[-1, 0.5, 1], nominal: 1}"), "s.yaml");
+  EXPECT_EQ(nominal.model_values, (std::vector<double>{1}));
+}
+
+TEST(ModelError, BadDiscreteParameterNamesTheKey) {
+  const std::string yaml =
+      replaced(kStepYaml, "alpha: {interval: [-1, 1], nominal: 0.5}", "alpha: {values: [-1, 1], nominal: 1}");
+  expect_error(replaced(yaml, "[-1, 1]", "[1, -1]"), "model_error.alpha.values", "values must increase");
+  expect_error(replaced(yaml, "[-1, 1]", "[1, 1]"), "model_error.alpha.values", "values must increase");
+  expect_error(replaced(yaml, "[-1, 1]", "[]"), "model_error.alpha.values", "empty");
+  expect_error(replaced(yaml, "nominal: 1", "nominal: 0"), "model_error.alpha.nominal", "one of the values");
+  expect_error(replaced(yaml, "nominal: 1", "interval: [-1, 1]"), "model_error.alpha.interval",
+               "unknown key");
 }
 
 TEST(ModelError, ADegenerateSliceIsATaskError) {

@@ -40,6 +40,26 @@ void add_preimages(const LoadedTask& lt, const ReachedSet& goal, const Motion& m
       ReachedSet::from_pieces(lt.cspace, s->failure_pieces).intersected(*s->weak).area();
 }
 
+// (d), Donald's linking condition (L0) at every link k of the sequence: the terminations of the first k
+// motions that lie in G, G ∩ push_k, must lie in the strong preimage of G under the remaining motions, i.e.
+// the rest run from there ends in G only (verify_strategy_from's goal containment).
+void check_linking(const LoadedTask& lt, const std::vector<std::string>& motions, const VerifyResult& result,
+                   const ReachedSet& goal, EdrSlice* s) {
+  for (std::size_t k = 1; k < motions.size() && k < result.steps.size(); ++k) {
+    const ReachedSet attained = result.steps[k - 1].termination.intersected(goal);
+    if (attained.empty()) continue;
+    const std::vector<std::string> rest(motions.begin() + static_cast<std::ptrdiff_t>(k), motions.end());
+    const VerifyResult from_goal =
+        verify_strategy_from(lt, Strategy::sequence("rest", rest), attained, s->options);
+    if (from_goal.reliable) continue;
+    s->linked = false;
+    s->linking_problem = "motion '" + motions[k - 1] + "' may stop in the goal, and from there '" +
+                         motions[k] + "'" + (rest.size() > 1 ? " and the rest" : "") +
+                         " may end outside it (linking condition L0)";
+    return;
+  }
+}
+
 std::string slice_text(const Task& task, const std::vector<double>& values) {
   std::string at;
   for (std::size_t p = 0; p < values.size(); ++p)
@@ -68,6 +88,7 @@ EdrSlice simulate_slice(const Task& task, const std::vector<std::string>& motion
   s.failure_pieces = pieces_outside_goal(lt, last.termination);
   for (const ReachedPiece& p : s.failure_pieces) s.failure_area += p.area;
   if (options.preimages) add_preimages(lt, goal, *lt.task.find_motion(motions.back()), options, &s);
+  check_linking(lt, motions, result, goal, &s);
   return s;
 }
 
@@ -81,12 +102,14 @@ EdrSlice run_slice(const Task& task, const std::vector<std::string>& motions,
   }
 }
 
-// Pairs of slices that differ in exactly one parameter, at consecutive values of it among the slices'.
-std::vector<std::pair<int, int>> adjacent_slices(const std::vector<EdrSlice>& slices) {
+// Pairs of slices that differ in exactly one parameter, at consecutive values of it among the slices'. Not
+// along a discrete parameter: no world lies between its values.
+std::vector<std::pair<int, int>> adjacent_slices(const Task& task, const std::vector<EdrSlice>& slices) {
   std::vector<std::pair<int, int>> out;
   if (slices.empty() || slices.size() > kMaxSweptSlices) return out;
   const std::size_t params = slices.front().values.size();
   for (std::size_t p = 0; p < params; ++p) {
+    if (task.model_error.at(p).discrete()) continue;
     std::vector<double> values;
     for (const EdrSlice& s : slices) values.push_back(s.values[p]);
     std::sort(values.begin(), values.end());
@@ -125,9 +148,9 @@ double convex_area(const std::vector<Vec3>& polygon) {
 // A swept piece keeps slice i's index, C-space and the atom (whose friction cone it stands for); its polygon
 // is the hull, its area the hull's.
 template <class Pieces>
-std::vector<SlicePiece> swept(const std::vector<EdrSlice>& slices, const Pieces& pieces) {
+std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& slices, const Pieces& pieces) {
   std::vector<SlicePiece> out;
-  for (const auto& [i, j] : adjacent_slices(slices)) {
+  for (const auto& [i, j] : adjacent_slices(task, slices)) {
     if (!slices[i].termination || !slices[j].termination) continue;
     const double tol = kGoalRelativeTolerance * slices[i].task->cspace.scale();
     const std::vector<ReachedPiece> first = pieces(i), second = pieces(j);
@@ -161,8 +184,8 @@ void check_distinguishable(const Task& task, const EdrOptions& options, EdrResul
     for (const ReachedPiece& p : s.failure_pieces)
       failure.push_back({&s.task->cspace, static_cast<int>(i), p});
   }
-  out->swept_success = swept(out->slices, [&](int i) { return out->slices[i].success->pieces(); });
-  out->swept_failure = swept(out->slices, [&](int i) { return out->slices[i].failure_pieces; });
+  out->swept_success = swept(task, out->slices, [&](int i) { return out->slices[i].success->pieces(); });
+  out->swept_failure = swept(task, out->slices, [&](int i) { return out->slices[i].failure_pieces; });
   success.insert(success.end(), out->swept_success.begin(), out->swept_success.end());
   failure.insert(failure.end(), out->swept_failure.begin(), out->swept_failure.end());
   const std::vector<Confusion> pairs = confusable_pairs(
@@ -197,7 +220,13 @@ EdrResult verify_edr(const Task& task, const std::vector<std::string>& motions,
   check_distinguishable(task, options, &out);
   if (out.reaches_goal && !out.distinguishable)
     out.reason = "a termination in the goal is confusable with a failure termination (H)";
-  out.edr_reliable = out.reaches_goal && out.distinguishable;
+  for (const EdrSlice& s : out.slices)
+    if (!s.linked && out.linked) {
+      out.linked = false;
+      if (out.reason.empty())
+        out.reason = "in the slice " + slice_text(task, s.values) + ": " + s.linking_problem;
+    }
+  out.edr_reliable = out.reaches_goal && out.distinguishable && out.linked;
   return out;
 }
 

@@ -19,7 +19,12 @@
 //  (c) no termination point in G of any slice is confusable with a point of H of any slice (distinguish.h):
 //      then "success" is never signalled outside G, and where P covers the start (success guaranteed)
 //      every termination is in G and is recognized, so failure is never signalled there (the EDR axioms,
-//      Donald l.1361-1374).
+//      Donald l.1361-1374);
+//  (d) a multi-motion strategy is linked (Donald §12.5, l.5081-5085): where the push-forward of the first k
+//      motions meets G, the remaining motions are guaranteed to end in G, i.e. (L0) G ∩ push ⊆ R2 with R2 the
+//      push-forward's part in the strong preimage of G under the rest; (L0) is equivalent to (L1)
+//      G ∩ push = R2* and to (L2) H ∩ push = push − R2*. A robot that reached the goal early is not led out
+//      of it into a failure signal.
 #pragma once
 #include <functional>
 #include <memory>
@@ -42,6 +47,8 @@ struct EdrSlice {
   std::string termination_problem;         // the verifier's reason when (a) fails
   bool reliable = false;                   // every termination lies in G: success guaranteed here
   bool distinguishable = true;             // no confusable pair involves this slice
+  bool linked = true;                      // (d) holds in this slice
+  std::string linking_problem;             // which push-forward meets G and where the rest may lead
   // F, T and T ∩ G (null when the motions may not terminate).
   std::shared_ptr<const ReachedSet> reached, termination, success;
   std::vector<ReachedPiece> failure_pieces;  // H = T − G
@@ -69,18 +76,19 @@ struct EdrConfusion {
 
 struct EdrResult {
   std::vector<EdrSlice> slices;
-  // Between adjacent slices (differing in one parameter, at consecutive values) the terminations in G and in
-  // H sweep: per atom that both slices' pieces lie on, the convex hull of the two pieces when they are
-  // coplanar (a face or edge that translates with the parameter, e.g. a hole's bottom edge as its width
-  // grows). The verdict's test (c) and the EDR predicate (experiments/edr/edr_check.h) use the swept pieces
-  // beside the slices' own, so that a world between two slices is judged too (its terminations lie in the
-  // sweep when its pieces move affinely and keep their atoms; docs/edr.md "Between slices"). Only along one
-  // parameter at a time (grid edges, not the inside of a cell of several parameters), and none for more
+  // Between adjacent slices (differing in one continuous parameter, at consecutive values) the terminations
+  // in G and in H sweep: per atom that both slices' pieces lie on, the convex hull of the two pieces when
+  // they are coplanar (a face or edge that translates with the parameter, e.g. a hole's bottom edge as its
+  // width grows). The verdict's test (c) and the EDR predicate (experiments/edr/edr_check.h) use the swept
+  // pieces beside the slices' own, so that a world between two slices is judged too (its terminations lie in
+  // the sweep when its pieces move affinely and keep their atoms; docs/edr.md "Between slices"). Only along
+  // one parameter at a time (grid edges, not the inside of a cell of several parameters), and none for more
   // than 2000 slices.
   std::vector<SlicePiece> swept_success, swept_failure;
   bool terminates = true;       // (a)
   bool reaches_goal = false;    // (b)
   bool distinguishable = true;  // (c)
+  bool linked = true;           // (d)
   bool edr_reliable = false;
   std::vector<EdrConfusion> confusions;  // the first EdrOptions::confusion_limit of them
   int confusion_count = 0;

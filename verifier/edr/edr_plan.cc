@@ -57,11 +57,15 @@ class Search {
     return verify_edr(with_dampers_(directions), names(directions.size()), coarse_, quick_);
   }
 
+  bool holds(const EdrResult& verdict) const {
+    return verdict.edr_reliable && (!options_.guaranteed || guaranteed_where_goal_exists(verdict));
+  }
+
   // True (and the plan set) when the coarse verdict holds and the fine one too.
   bool accept(const std::vector<Vec3>& directions, const EdrResult& coarse_verdict) {
-    if (!coarse_verdict.edr_reliable) return false;
+    if (!holds(coarse_verdict)) return false;
     EdrResult fine = verify_edr(with_dampers_(directions), names(directions.size()), fine_, options_.edr);
-    if (!fine.edr_reliable) return false;
+    if (!holds(fine)) return false;
     plan_.found = true;
     plan_.directions = directions;
     plan_.verdict = std::move(fine);
@@ -101,8 +105,12 @@ class Search {
     }
     if (options_.min_motions <= 1 && one_step(toward.normalized())) return plan_;
     if (options_.max_motions >= 2 && two_steps(toward.normalized(), goal)) return plan_;
-    plan_.reason = exhausted() ? "the search's budget of coarse verdicts ran out"
-                               : "no candidate is EDR-reliable on the coarse and the fine slices";
+    plan_.reason =
+        exhausted() ? "the search's budget of coarse verdicts ran out"
+        : options_.guaranteed
+            ? "no candidate is EDR-reliable and guaranteed where the goal exists on the coarse and "
+              "the fine slices"
+            : "no candidate is EDR-reliable on the coarse and the fine slices";
     return plan_;
   }
 
@@ -116,6 +124,12 @@ class Search {
 };
 
 }  // namespace
+
+bool guaranteed_where_goal_exists(const EdrResult& verdict) {
+  for (const EdrSlice& s : verdict.slices)
+    if (!s.goal_empty && !s.reliable) return false;
+  return true;
+}
 
 std::string edr_plan_motion_name(int index) { return "edr_plan_" + std::to_string(index + 1); }
 

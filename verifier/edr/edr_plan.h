@@ -9,6 +9,9 @@
 //     slices.
 // The multi-resolution loop (M1-M2): plan on the coarse slices, re-verify on the fine ones; a candidate that
 // fails there is dropped and the search goes on (M3's "nearby directions" are the next candidates).
+// With `guaranteed`, a plan must also be guaranteed wherever the goal exists (every slice with a goal is
+// `reliable`: success from the whole start, Donald's R' = R there), not only EDR-reliable, which allows a
+// failure signal in such a slice where success is not guaranteed.
 #pragma once
 #include <functional>
 #include <string>
@@ -32,6 +35,7 @@ struct EdrPlanOptions {
   int max_motions = 2;                             // 1: one-step plans only
   int min_motions = 1;                             // 2: two-step plans only
   int max_verdicts = 400;                          // coarse verdicts before giving up
+  bool guaranteed = false;                         // require success wherever the goal exists
   EdrOptions edr;                                  // the verifier's model per slice
 };
 
@@ -42,6 +46,9 @@ struct EdrPlan {
   int verdicts = 0;              // coarse verdicts computed
   std::string reason;            // why nothing was found
 };
+
+// Every slice with a goal is reliable (its terminations all in the goal).
+bool guaranteed_where_goal_exists(const EdrResult& verdict);
 
 // The candidate directions about `toward` (unit): toward itself, then turned by +-k angle_step.
 std::vector<Vec3> edr_candidate_directions(const Vec3& toward, double angle_step, int angle_steps);

@@ -1,12 +1,20 @@
 // EDR on slices (verifier/edr; Donald 1987 Example (1) as models/tasks/step_offset.yaml, Example (6) as
-// models/tasks/hole_width.yaml), under Buckley's first-order model (the rollouts' model adds the contact lift
-// and the servo coast; docs/edr.md).
+// models/tasks/hole_width.yaml, Example (3) as models/tasks/twin_universe.yaml), under Buckley's first-order
+// model (the rollouts' model adds the contact lift and the servo coast; docs/edr.md).
 #include "verifier/edr/edr.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <sstream>
+
 #include "models/loaded_task.h"
 #include "models/model_error.h"
+#include "models/task_loader.h"
 
 namespace cmt {
 namespace {
@@ -75,6 +83,31 @@ TEST(StepOffsetEdr, DownNeverReachesTheGoal) {
   EXPECT_FALSE(r.edr_reliable);
 }
 
+// Linking (Donald §12.5, (L0)): `left` stops in the goal wherever it exists; a second motion straight up
+// leads the robot out of it (to the ceiling), so the composed strategy is not linked there. Where the goal
+// vanishes G ∩ push is empty and the condition holds.
+TEST(StepOffsetEdr, ASecondMotionLeavingTheGoalBreaksTheLink) {
+  const std::string path = std::string(CMT_SOURCE_DIR) + "/models/tasks/step_offset.yaml";
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string down = "down: {damper: [0, 0, -1]}";
+  ASSERT_NE(text.find(down), std::string::npos);
+  text.replace(text.find(down), down.size(), down + "\n  up: {damper: [0, 0, 1]}");
+  const Task t = parse_task_string(text, path);
+  const EdrResult r = verify_edr(t, {"left", "up"}, model_slices(t, 5), EdrOptions{});
+  ASSERT_TRUE(r.terminates) << r.reason;
+  EXPECT_FALSE(r.linked);
+  EXPECT_FALSE(r.edr_reliable);
+  for (const EdrSlice& s : r.slices) {
+    EXPECT_EQ(s.linked, s.goal_empty) << s.values[0];
+    if (!s.linked) {
+      EXPECT_NE(s.linking_problem.find("L0"), std::string::npos) << s.linking_problem;
+    }
+  }
+  // The one-motion strategy has no link.
+  EXPECT_TRUE(verify_edr(t, {"left"}, model_slices(t, 5), EdrOptions{}).linked);
+}
+
 EdrResult run_hole_width(const std::vector<std::string>& motions) {
   const auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole_width.yaml");
   return verify_edr(task->task, motions, model_slices(task->task, 5), EdrOptions{});
@@ -107,6 +140,7 @@ TEST(HoleWidthEdr, TwoMotionPlanIsEdrReliableWithFailureInTheFarCorner) {
         }
     }
   }
+  EXPECT_TRUE(r.linked);
   EXPECT_TRUE(r.edr_reliable) << r.reason;
   // Between adjacent slices with a goal, its stops sweep: per atom the hull of both slices' pieces, e.g. the
   // strip of the bottom between two positions of the right wall's foot edge. Every world between the slices
@@ -127,6 +161,107 @@ TEST(HoleWidthEdr, TheFirstMotionAloneNeverReachesTheGoal) {
   const EdrResult r = run_hole_width({"left"});
   EXPECT_FALSE(r.reaches_goal);
   EXPECT_FALSE(r.edr_reliable);
+}
+
+std::shared_ptr<const LoadedTask> twin_universe() {
+  return load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/twin_universe.yaml");
+}
+
+EdrResult run_twin(const std::vector<std::string>& motions, bool preimages = true) {
+  const auto task = twin_universe();
+  EdrOptions options;
+  options.preimages = preimages;
+  return verify_edr(task->task, motions, model_slices(task->task, 5), options);
+}
+
+// The union of a slice's termination pieces as sorted rounded points (to compare positions across slices).
+std::vector<std::vector<long>> termination_points(const EdrSlice& s) {
+  std::vector<std::vector<long>> out;
+  for (const ReachedPiece& p : s.termination->pieces())
+    for (const Vec3& q : p.polygon)
+      out.push_back({std::lround(q.x() * 1e6), std::lround(q.y() * 1e6), std::lround(q.z() * 1e6)});
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Donald's Example (3): J = {1, 2}, the goal only in universe 1. The first motion pushes forward to the shaft
+// floor in both universes, at the same positions (S1 u S2: the sensors cannot tell them apart), and never
+// reaches the goal.
+TEST(TwinUniverseEdr, TheFirstMotionPushesForwardToTheSamePlaceInBothUniverses) {
+  const EdrResult r = run_twin({"down"});
+  ASSERT_EQ(r.slices.size(), 2u);  // the two universes, at any resolution
+  EXPECT_EQ(r.slices[0].values, (std::vector<double>{1}));
+  EXPECT_EQ(r.slices[1].values, (std::vector<double>{2}));
+  EXPECT_FALSE(r.slices[0].goal_empty);
+  EXPECT_TRUE(r.slices[1].goal_empty);
+  EXPECT_FALSE(r.reaches_goal);
+  for (const EdrSlice& s : r.slices) {
+    ASSERT_TRUE(s.terminates) << s.termination_problem;
+    for (const ReachedPiece& p : s.termination->pieces())
+      for (const Vec3& q : p.polygon) {
+        EXPECT_NEAR(q.z(), 0, 1e-9);  // the shaft floor
+        EXPECT_GE(q.x(), -1 + 1e-9);  // in the shaft, .3 in at most from its right wall
+        EXPECT_LE(q.x(), -0.5 + 1e-9);
+      }
+  }
+  EXPECT_EQ(termination_points(r.slices[0]), termination_points(r.slices[1]));
+}
+
+// The two-step strategy: in universe 1 every termination is in the goal (the tunnel's far upper corner); in
+// universe 2 every one is on the short tunnel's end face x = -2.5, F(S2), 2.5 in or more from any goal point.
+// No sweeps: nothing lies between the universes.
+TEST(TwinUniverseEdr, TheTwoStepStrategyIsEdrReliable) {
+  const EdrResult r = run_twin({"down", "up_left"});
+  ASSERT_EQ(r.slices.size(), 2u);
+  const EdrSlice& one = r.slices[0];
+  const EdrSlice& two = r.slices[1];
+  ASSERT_TRUE(one.terminates) << one.termination_problem;
+  ASSERT_TRUE(two.terminates) << two.termination_problem;
+  EXPECT_TRUE(one.reliable);
+  EXPECT_TRUE(one.failure_pieces.empty());
+  EXPECT_FALSE(one.success->empty());
+  EXPECT_TRUE(two.success->empty());
+  ASSERT_FALSE(two.failure_pieces.empty());
+  for (const ReachedPiece& p : two.failure_pieces)
+    for (const Vec3& q : p.polygon) {
+      EXPECT_NEAR(q.x(), -2.5, 1e-9);
+      EXPECT_GE(q.z(), 0.3);  // it rises at 11 degrees or more over the 1.5 in from the shaft
+    }
+  EXPECT_TRUE(r.swept_success.empty());
+  EXPECT_TRUE(r.swept_failure.empty());
+  EXPECT_TRUE(r.linked);  // `down` never stops in the goal
+  EXPECT_TRUE(r.edr_reliable) << r.reason;
+}
+
+// No one-step EDR strategy: commanded directions all round the x-z plane (every 15 degrees), none of which
+// reaches the goal in either universe (the geometric argument in the task file), and the same tilted toward
+// y, none of which is EDR-reliable (Donald: "there is no one-step EDR strategy" from the start). A tilted
+// command may reach the goal under the verifier's edge-sliding over-approximation: sliding along the shaft's
+// left wall at the friction cone's edge, it may creep down into the tunnel.
+TEST(TwinUniverseEdr, NoOneStepCommandIsEdrReliable) {
+  const std::string path = std::string(CMT_SOURCE_DIR) + "/models/tasks/twin_universe.yaml";
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string direct = "direct: {damper: [-1, 0, -0.5], edr: true}";
+  ASSERT_NE(text.find(direct), std::string::npos);
+  EdrOptions options;
+  options.preimages = false;
+  for (int k = 0; k < 24; ++k)
+    for (double y : {0.0, 0.5}) {
+      const double angle = k * M_PI / 12;
+      std::ostringstream probe;
+      probe << std::setprecision(17) << "direct: {damper: [" << std::cos(angle) << ", " << y << ", "
+            << std::sin(angle) << "], edr: true}";
+      std::string changed = text;
+      changed.replace(changed.find(direct), direct.size(), probe.str());
+      const Task t = parse_task_string(changed, path);
+      const EdrResult r = verify_edr(t, {"direct"}, model_slices(t, 2), options);
+      if (y == 0) {
+        EXPECT_FALSE(r.reaches_goal) << probe.str();
+      }
+      EXPECT_FALSE(r.edr_reliable) << probe.str();
+    }
 }
 
 ReachedPiece piece(std::vector<Vec3> points) {
