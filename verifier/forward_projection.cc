@@ -317,7 +317,7 @@ class Projector {
       }
       if (s0 > s1) continue;
       RimCoast& done = rim_coasts_[{fi, e}];
-      // Flown from already (growth within the parameter slack is rounding, as in add_interval).
+      // Flown from already (growth within the parameter slack is rounding).
       const double slack = 4 * kEdgeParamSlack;
       if (std::any_of(done.flown.begin(), done.flown.end(), [&](const std::pair<double, double>& iv) {
             return iv.first <= s0 + slack && s1 <= iv.second + slack;

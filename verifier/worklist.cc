@@ -2,6 +2,7 @@
 #include "verifier/internal/worklist.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cmt::fp {
 
@@ -46,17 +47,34 @@ bool DamperWorklist::add_point(int fi, const Point2& p) {
 }
 
 void DamperWorklist::add_interval(int ei, double t0, double t1) {
+  const std::vector<EdgeInterval> before = r_.edges[ei];
   std::vector<EdgeInterval> added;
   const double fresh = r_.add_interval(ei, t0, t1, &added);
   if (fresh < 0) return;
-  // Growth below the parameter slack, or no longer than kRegionGrowthCells region cells, is rounding, not
-  // reach: stored, not propagated. The face regions' outward rounding (up to 1.5 cells per overlay) reaches
-  // their closure's edges, so without the cell bound an edge could creep a cell per round through its faces.
+  // Growth below the parameter slack is rounding, not reach: stored, not propagated. So is an extension of a
+  // held interval by no more than kRegionGrowthCells region cells: the face regions' outward rounding (up to
+  // 1.5 cells per overlay) reaches their closure's edges, and without this an edge could creep a cell per
+  // round through its faces. A new interval apart from the held ones is reach, however short, and an
+  // extension that comes within that bound of an end reaches the end's vertex.
+  if (added.size() == 1 && added[0].t0 == added[0].t1) {
+    edge_[ei].push_back(added[0]);
+    return;
+  }
+  if (fresh <= 4 * kEdgeParamSlack) return;
   const Edge& e = r_.cspace->edges()[ei];
-  const double rounding = std::max(4 * kEdgeParamSlack,
-                                   kRegionGrowthCells * region_cell(r_.cspace->scale()) / (e.b - e.a).norm());
-  if (fresh > rounding || (added.size() == 1 && added[0].t0 == added[0].t1))
-    for (const EdgeInterval& iv : added) edge_[ei].push_back(iv);
+  const double rounding = kRegionGrowthCells * region_cell(r_.cspace->scale()) / (e.b - e.a).norm();
+  const int first_vertex = static_cast<int>(r_.cspace->faces().size() + r_.cspace->edges().size());
+  for (const EdgeInterval& gap : added) {
+    const bool extends = std::any_of(before.begin(), before.end(), [&](const EdgeInterval& held) {
+      return std::abs(gap.t0 - held.t1) <= kEdgeParamSlack || std::abs(gap.t1 - held.t0) <= kEdgeParamSlack;
+    });
+    if (fresh > rounding || !extends) {
+      edge_[ei].push_back(gap);
+      continue;
+    }
+    if (gap.t0 <= rounding && e.vertex_a >= 0) add_vertex(e.vertex_a - first_vertex);
+    if (gap.t1 >= 1 - rounding && e.vertex_b >= 0) add_vertex(e.vertex_b - first_vertex);
+  }
 }
 
 void DamperWorklist::add_vertex(int vi) {

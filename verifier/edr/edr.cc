@@ -55,7 +55,7 @@ void check_linking(const LoadedTask& lt, const std::vector<std::string>& motions
     s->linked = false;
     s->linking_problem = "motion '" + motions[k - 1] + "' may stop in the goal, and from there '" +
                          motions[k] + "'" + (rest.size() > 1 ? " and the rest" : "") +
-                         " may end outside it (linking condition L0)";
+                         " may not end in it (linking condition L0): " + from_goal.failure;
     return;
   }
 }

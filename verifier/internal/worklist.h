@@ -33,8 +33,9 @@ void add_boundary_closure(const ReachedSet::Impl& r, int fi, const std::vector<P
 
 // The damper projections' worklist (forward_projection.cc, backprojection.cc). The adders store into the set
 // and queue only what is new: a face region's growth wider than kRegionGrowthCells, segments and points not
-// covered yet, edge growth longer than 4 kEdgeParamSlack (shorter is rounding: stored, not propagated),
-// vertices not held yet. Each returns whether something new was queued.
+// covered yet, edge growth longer than 4 kEdgeParamSlack (shorter is rounding: stored, not propagated; so is
+// an extension of a held interval by at most kRegionGrowthCells region cells, which still reaches an end's
+// vertex within that bound), vertices not held yet. Each returns whether something new was queued.
 class DamperWorklist {
  public:
   explicit DamperWorklist(ReachedSet::Impl& set);  // everything already in the set is pending
