@@ -1,30 +1,42 @@
 // `cmt plan TASK --states [--max-atoms K] [--friction MU] [--eps-s E] [--theta-f T] [--list] --json`: the
-// primitive states of Buckley's planner (§6.4.1, Table 6.3; docs/planner.md). The planner's search is not
-// built yet: without --states the command is a usage error (exit 2).
+// primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--max-atoms K] [--max-motions M]
+// --json [-o OUT.yaml]`: the planner's search over sticking arcs (§6.5–6.7), the planned strategy checked by
+// the verifier (docs/planner.md).
 #include <chrono>
+#include <fstream>
 #include <iostream>
 #include <optional>
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/common/task_motions.h"
 #include "experiments/common/task_overrides.h"
+#include "experiments/validation/validation.h"
+#include "experiments/validation/verifier_model.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
 #include "verifier/planner/primitive_states.h"
+#include "verifier/planner/search.h"
+#include "verifier/planner/task_atoms.h"
+#include "verifier/planner/verifier_check.h"
+#include "verifier/verify.h"
 
 namespace cmt {
 namespace {
 
 struct PlanCli {
-  std::string task;
+  std::string task, out, termination = "sticking";
   bool states = false, list = false;
-  int max_atoms = 0;
+  int max_atoms = 0, max_motions = 3, max_expansions = 200;
+  int check = 0, threads = 1;  // rollouts of the planned strategy (0: none), and their threads
+  std::uint64_t seed = 1;
   long long max_states = 1'000'000;
   std::optional<double> friction, eps_s, theta_f;
 };
 
-// The task with the given friction and sensing bounds written in (task_overrides.h: checked like a file).
-std::shared_ptr<const LoadedTask> task_with_overrides(const PlanCli& cli) {
+// The task's text with the given friction and sensing bounds written in (task_overrides.h: checked like a
+// file).
+std::string text_with_overrides(const PlanCli& cli) {
   const std::string text = read_task_text(cli.task);
   const auto base = load_task_from_string(text, cli.task);
   ParamSet params;
@@ -35,14 +47,145 @@ std::shared_ptr<const LoadedTask> task_with_overrides(const PlanCli& cli) {
   set(ParamTarget::Kind::kFriction, "", cli.friction, "--friction");
   set(ParamTarget::Kind::kUncertainty, "eps_s", cli.eps_s, "--eps-s");
   set(ParamTarget::Kind::kUncertainty, "theta_f", cli.theta_f, "--theta-f");
-  if (params.empty()) return base;
-  return load_task_from_string(apply_overrides(text, base->task, params), cli.task);
+  if (params.empty()) return text;
+  return apply_overrides(text, base->task, params);
+}
+
+std::shared_ptr<const LoadedTask> task_with_overrides(const PlanCli& cli) {
+  return load_task_from_string(text_with_overrides(cli), cli.task);
+}
+
+nlohmann::json atom_names(const CSpace& c, const std::vector<int>& atoms) {
+  nlohmann::json names = nlohmann::json::array();
+  for (int a : atoms) names.push_back(a == c.atom_count() ? std::string("free") : c.atom_name(a));
+  return names;
+}
+
+nlohmann::json states_json(const CSpace& c, const std::vector<planner::State>& states) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const planner::State& s : states) out.push_back(atom_names(c, s));
+  return out;
+}
+
+// A set of commanded positions as its convex pieces: half-spaces [nx, ny, nz, offset] (n . x <= offset) and
+// vertices.
+nlohmann::json cpositions_json(const planner::CPositionSet& set, int dimension) {
+  nlohmann::json pieces = nlohmann::json::array();
+  for (const planner::ConvexPiece& piece : set.pieces()) {
+    nlohmann::json hs = nlohmann::json::array(), vs = nlohmann::json::array();
+    for (const HalfSpace& h : piece.halfspaces)
+      hs.push_back({h.normal.x(), h.normal.y(), h.normal.z(), h.offset});
+    for (const Vec3& v : piece.vertices) vs.push_back(point_json(v, dimension));
+    pieces.push_back({{"halfspaces", hs}, {"vertices", vs}});
+  }
+  return pieces;
+}
+
+std::string planned_motion_name(std::size_t step) { return "planned_" + std::to_string(step + 1); }
+
+// The planned strategy written into the task (decision-free plans only), verified, and written to -o.
+void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask& task,
+                  const planner::PlanResult& plan, nlohmann::json& out) {
+  if (!plan.decision_free) {
+    out["strategy"] = nullptr;
+    out["strategy_reason"] =
+        "the plan branches on sensed states; only decision-free plans are written as strategies";
+    return;
+  }
+  std::vector<AddedMotion> motions;
+  for (std::size_t i = 0; i < plan.steps.size(); ++i)
+    motions.push_back({planned_motion_name(i), Motion::Kind::kSpring, plan.steps[i].arc.commanded});
+  const std::string name = free_strategy_name(task.task, "planned");
+  const std::string planned = task_yaml_with_motions(text, task.task, motions, name, "the planner's");
+  const auto planned_task = load_task_from_string(planned, cli.task);
+  const Strategy& strategy = planned_task->task.strategy_named(name);
+  const VerifyResult v = verify_strategy(*planned_task, strategy, rollout_verify_options(*planned_task));
+  out["strategy"] = strategy.motions;
+  out["strategy_name"] = name;
+  out["verified"] = {{"reliable", v.reliable}, {"failure", v.failure}};
+  if (cli.check > 0) {  // the physics check: `cmt validate` of the planned strategy
+    ValidateOptions options;
+    options.n = cli.check;
+    options.seed = cli.seed;
+    options.threads = cli.threads;
+    const nlohmann::json r =
+        validation_json(*planned_task, run_validation(planned_task, planned, name, options));
+    out["check"] = {{"rollouts", r["rollouts"]},
+                    {"successes", r["successes"]},
+                    {"outside", r["outside"]},
+                    {"soundness", r["soundness"]},
+                    {"seed", cli.seed}};
+  }
+  if (!cli.out.empty()) {
+    std::ofstream file(cli.out);
+    if (!(file << planned)) throw TaskError(cli.out, "-o", "cannot write the planned task");
+    out["written"] = cli.out;
+  }
+}
+
+void run_plan_search(const PlanCli& cli, CommandState& state) {
+  if (cli.termination != "sticking")
+    throw CLI::ValidationError("--termination",
+                               "only sticking is built: the planner's position- and "
+                               "force-sensing arcs (types 2 and 3) are not (docs/planner.md)");
+  const auto start = std::chrono::steady_clock::now();
+  const std::string text = text_with_overrides(cli);
+  const auto task = load_task_from_string(text, cli.task);
+  const CSpace& c = task->cspace;
+  const Uncertainty& u = task->task.uncertainty;
+  planner::PlanRequest request;
+  request.start_atoms = planner::start_atoms(*task);
+  request.goal_atom = planner::goal_atoms(*task);
+  request.eps_s = u.eps_s;
+  request.theta_f = u.theta_f;
+  request.max_atoms = cli.max_atoms > 0 ? cli.max_atoms : c.atom_count();
+  request.max_motions = cli.max_motions;
+  request.max_expansions = cli.max_expansions;
+  const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
+  request.confirm = [&](const planner::State& from, const Vec3& commanded) {
+    return planner::verifier_targets(*task, from, commanded, verify_options);
+  };
+  planner::AtomSimulation simulation(c, u);
+  const planner::PlanResult plan = planner::plan_sticking(simulation, c, request);
+  nlohmann::json out = {{"task", task->task.name},     {"found", plan.found},
+                        {"termination", "sticking"},   {"start_states", states_json(c, plan.start_states)},
+                        {"expanded", plan.expanded},   {"arcs", plan.arcs},
+                        {"confirmed", plan.confirmed}, {"rejected", plan.rejected},
+                        {"widened", plan.widened},     {"decision_free", plan.decision_free}};
+  nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
+  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+    const planner::GraphArc& arc = plan.steps[i].arc;
+    motions.push_back({{"name", planned_motion_name(i)},
+                       {"commanded", point_json(arc.commanded, task->task.dimension)},
+                       {"depth", arc.depth},
+                       {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)}});
+    steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
+                     {"motion", planned_motion_name(i)},
+                     {"targets", atom_names(c, arc.arc.targets)},
+                     {"heads", states_json(c, arc.heads)}});
+  }
+  out["motions"] = motions;
+  out["steps"] = steps;
+  if (plan.found)
+    add_strategy(cli, text, *task, plan, out);
+  else
+    out["reason"] = plan.reason, out["strategy"] = nullptr;
+  out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bool verified = plan.found && (!out.contains("verified") || out["verified"]["reliable"].get<bool>());
+  if (out.contains("check"))
+    verified =
+        verified && out["check"]["outside"] == 0 && out["check"]["successes"] == out["check"]["rollouts"];
+  if (state.json)
+    print_json(out);
+  else
+    std::cout << (plan.found ? "found: " + out["strategy"].dump() + " " + motions.dump()
+                             : "not found: " + plan.reason)
+              << "\n";
+  state.exit_status = verified ? kExitSuccess : kExitFailureFound;
 }
 
 void run_plan(const PlanCli& cli, CommandState& state) {
-  if (!cli.states)
-    throw CLI::ValidationError("plan",
-                               "give --states (the planner's search is not built yet; docs/planner.md)");
+  if (!cli.states) return run_plan_search(cli, state);
   const auto start = std::chrono::steady_clock::now();
   const auto task = task_with_overrides(cli);
   const CSpace& c = task->cspace;
@@ -90,13 +233,29 @@ void run_plan(const PlanCli& cli, CommandState& state) {
 
 void add_plan_command(CLI::App& app, CommandState& state) {
   auto cli = std::make_shared<PlanCli>();
-  auto* cmd = app.add_subcommand("plan", "Buckley's planner (ch. 6): its primitive states (--states)");
+  auto* cmd = app.add_subcommand(
+      "plan",
+      "Buckley's planner (ch. 6): a strategy of spring motions that sticks in the goal, or (--states) "
+      "its primitive states");
   cmd->add_option("TASK", cli->task, "task YAML file")->required();
   cmd->add_flag(
       "--states", cli->states,
       "count the primitive states: sets of atoms no two of which sensing can tell apart (Sec 6.4.1)");
   cmd->add_option("--max-atoms", cli->max_atoms, "only states of at most K atoms (default 0: any number)")
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--max-motions", cli->max_motions, "the longest branch of a planned strategy (default 3)")
+      ->check(CLI::Range(1, 20));
+  cmd->add_option("--max-expansions", cli->max_expansions, "states the search may expand (default 200)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--termination", cli->termination, "how the planned motions end: sticking (the default)");
+  cmd->add_option("--check", cli->check,
+                  "run N MuJoCo rollouts of the planned strategy (`cmt validate`) and report them as check")
+      ->check(CLI::Range(0, 1'000'000));
+  cmd->add_option("--seed", cli->seed, "master seed of the --check rollouts (default 1)");
+  cmd->add_option("--threads", cli->threads, "threads of the --check rollouts (default 1)")
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("-o", cli->out,
+                  "write the task with the planned strategy added (spring motions planned_1, ...)");
   cmd->add_option("--max-states", cli->max_states,
                   "stop after this many states (default 10^6); truncated: true says the counts are partial")
       ->check(CLI::Range(1LL, 100'000'000LL));

@@ -12,6 +12,7 @@
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
 #include "experiments/common/point_json.h"
+#include "experiments/common/task_motions.h"
 #include "experiments/edr/edr_plan_task.h"
 #include "experiments/edr/edr_verdict.h"
 #include "experiments/validation/verifier_model.h"
@@ -29,12 +30,6 @@ struct PlanEdrCli {
   bool first_order = false;
 };
 
-std::string free_name(const Task& task, const std::string& wanted) {
-  std::string name = wanted;
-  for (int k = 2; task.find_strategy(name); ++k) name = wanted + "_" + std::to_string(k);
-  return name;
-}
-
 nlohmann::json plan_json(const PlanEdrCli& cli, const Task& task, const std::string& text,
                          const EdrPlan& plan, double seconds) {
   nlohmann::json out = {{"task", task.name}, {"found", plan.found}, {"verdicts", plan.verdicts}};
@@ -44,7 +39,7 @@ nlohmann::json plan_json(const PlanEdrCli& cli, const Task& task, const std::str
     out["seconds"] = seconds;
     return out;
   }
-  const std::string name = free_name(task, "plan_edr");
+  const std::string name = free_strategy_name(task, "plan_edr");
   const std::string planned = task_yaml_with_dampers(text, task, plan.directions, name);
   const Task planned_task = parse_task_string(planned, cli.task);
   nlohmann::json motions = nlohmann::json::array();

@@ -242,6 +242,21 @@ std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::pat
   return runs;
 }
 
+// `cmt plan --json` objects (an object with found and termination).
+std::vector<nlohmann::json> read_plan_runs(const std::vector<std::filesystem::path>& files) {
+  std::vector<nlohmann::json> runs;
+  for (const std::filesystem::path& f : files) {
+    std::ifstream in(f);
+    if (!in) throw TaskError(f.string(), "", "cannot open the planner result");
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("found") || !j.contains("termination"))
+      throw TaskError(f.string(), "",
+                      "not a `cmt plan --json` result (an object with found and termination)");
+    runs.push_back(std::move(j));
+  }
+  return runs;
+}
+
 // Per EDR result with a physics check, its outcomes against the first model parameter (edr_figure.h) in
 // figures/edr_<i>.png; each figure's layout is added to `figures` (figures.json) with kind "edr".
 std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs,
@@ -271,9 +286,11 @@ std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
                            const StickClassOf& stick_class, const CounterexampleReplay& replay,
                            const std::vector<std::filesystem::path>& teach_results,
-                           const std::vector<std::filesystem::path>& edr_results) {
+                           const std::vector<std::filesystem::path>& edr_results,
+                           const std::vector<std::filesystem::path>& plan_results) {
   const std::vector<TeachingRun> teaching = read_teaching_runs(teach_results, out_dir);
   const std::vector<nlohmann::json> edr = read_edr_runs(edr_results);
+  const std::vector<nlohmann::json> plans = read_plan_runs(plan_results);
   const ResultsDb db = read_results_db(database);
   prepare_output(out_dir);
   ReportBuilder builder(db, out_dir, stick_class, replay);
@@ -286,6 +303,7 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   ReportContent content = build_report_content(db, std::move(sections));
   content.teaching = teaching_table(teaching);
   content.edr = edr_table(edr);
+  content.planner = planner_table(plans);
   nlohmann::json figures = builder.figures();
   content.edr_figures = write_edr_figures(edr, out_dir, &figures);
   summary.configs = static_cast<int>(db.configs.size());

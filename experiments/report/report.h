@@ -23,10 +23,11 @@ struct ReportSummary {
 // `replay`: draws each configuration's counterexample trajectory on its 3-D page (empty: none drawn).
 // `teach_results`: `cmt teach --json` output files shown in a "Teaching sessions" section (a file that is not
 // such JSON is a TaskError naming it); `edr_results`: `cmt edr --json` files, an "Error detection and
-// recovery" section.
+// recovery" section; `plan_results`: `cmt plan --json` files, a "Planned strategies" section.
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
                            const StickClassOf& stick_class = {}, const CounterexampleReplay& replay = {},
                            const std::vector<std::filesystem::path>& teach_results = {},
-                           const std::vector<std::filesystem::path>& edr_results = {});
+                           const std::vector<std::filesystem::path>& edr_results = {},
+                           const std::vector<std::filesystem::path>& plan_results = {});
 
 }  // namespace cmt::report

@@ -157,6 +157,20 @@ void md_edr(std::ostream& md, const Table& t, const std::vector<FigureRef>& figu
   if (!figures.empty()) md << "\n";
 }
 
+constexpr const char* kPlannerTitle = "Planned strategies";
+constexpr const char* kPlannerIntro =
+    "Per task given to Buckley's planner (cmt plan, ch. 6; docs/planner.md): whether a strategy of spring "
+    "motions that stick in the goal was found, its motions (commanded position, the atoms it may stop in, "
+    "the "
+    "depth of the commanded position inside its set of commanded positions), the verifier's verdict on the "
+    "planned strategy from the task's start, and MuJoCo rollouts of it.";
+
+void md_planner(std::ostream& md, const Table& t) {
+  if (t.rows.empty()) return;
+  md << "## " << kPlannerTitle << "\n\n" << kPlannerIntro << "\n\n";
+  md_table(md, t);
+}
+
 void md_section(std::ostream& md, const ConfigSection& s) {
   md << "## Config " << s.row->config_id << ": " << md_escape(s.label) << "\n\n";
   if (!s.view_page.empty()) md << "[3-D view](" << s.view_page << ")\n\n";
@@ -272,6 +286,13 @@ void html_edr(std::ostream& h, const Table& t, const std::vector<FigureRef>& fig
   html_figures(h, figures);
 }
 
+void html_planner(std::ostream& h, const Table& t) {
+  if (t.rows.empty()) return;
+  h << "<h2 id=\"planner\">" << kPlannerTitle << "</h2>\n<p>" << html_escape(kPlannerIntro)
+    << "</p>\n<table class=\"planner\">\n";
+  html_rows(h, t);
+}
+
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
   const ConfigSection& s = c.sections[i];
   h << "<section class=\"config\" id=\"" << section_anchor(*s.row) << "\">\n<h3>Config " << s.row->config_id
@@ -328,6 +349,7 @@ std::string render_markdown(const ReportContent& c) {
   md_falsify(md, c.falsify);
   md_teaching(md, c.teaching);
   md_edr(md, c.edr, c.edr_figures);
+  md_planner(md, c.planner);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -342,6 +364,7 @@ std::string render_html(const ReportContent& c) {
   html_falsify(h, c.falsify);
   html_teaching(h, c.teaching);
   html_edr(h, c.edr, c.edr_figures);
+  html_planner(h, c.planner);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

@@ -86,6 +86,8 @@ struct ReportContent {
   // result with a physics check its outcomes against the first model parameter (edr_figure.h).
   Table edr;
   std::vector<FigureRef> edr_figures;
+  // "Planned strategies": one row per `cmt plan --json` result given to `cmt report --plan`.
+  Table planner;
   std::vector<ConfigSection> sections;
 };
 
@@ -130,6 +132,11 @@ struct TeachingRun {
   std::string view_link;  // the teaching session's 3-D page relative to the report, "" without one
 };
 Table teaching_table(const std::vector<TeachingRun>& runs);
+
+// ---- Planned strategies (planner_table.cc; docs/planner.md) ----
+
+// Per `cmt plan --json` object: task, found (or why not), the motions, the verifier's verdict, the rollouts.
+Table planner_table(const std::vector<nlohmann::json>& runs);
 
 // ---- Error detection and recovery (edr_table.cc; docs/edr.md) ----
 

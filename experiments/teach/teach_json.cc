@@ -72,12 +72,6 @@ nlohmann::json teach_json(const teaching::Session& session, double seconds) {
           {"seconds", seconds}};
 }
 
-std::string free_strategy_name(const Task& task, const std::string& wanted) {
-  std::string name = wanted;
-  for (int k = 2; task.find_strategy(name); ++k) name = wanted + "_" + std::to_string(k);
-  return name;
-}
-
 namespace {
 
 YAML::Node taught_task_node(const std::string& task_yaml, const teaching::Session& session,

@@ -6,15 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "experiments/common/task_motions.h"
 #include "verifier/teaching/teaching_session.h"
 
 namespace cmt {
 
 nlohmann::json teach_step_json(const teaching::Session& session, const teaching::TeachStep& step);
 nlohmann::json teach_json(const teaching::Session& session, double seconds);
-
-// A name for the taught strategy that the task does not use yet: `wanted`, else wanted_2, wanted_3, ...
-std::string free_strategy_name(const Task& task, const std::string& wanted);
 
 // The task file text with the teaching session's inline motions and the taught strategy (named
 // `strategy_name`) added.

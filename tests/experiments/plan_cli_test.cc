@@ -1,5 +1,6 @@
-// `cmt plan --states` end to end (docs/planner.md): Table 6.3's cube row, the hole's atom counts with the
-// table's sensing errors, and bad input.
+// `cmt plan` end to end (docs/planner.md): Table 6.3's cube row, the hole's atom counts with the table's
+// sensing errors, Buckley §6.3.1's one-motion cube plan with the verifier's verdict and rollouts, and bad
+// input.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -44,8 +45,34 @@ TEST(CmtPlan, HoleWithTable63sErrorsHasTheThesissAtomCounts) {
   EXPECT_EQ(j["primitive_states"], 66);
 }
 
-TEST(CmtPlan, WithoutStatesOrWithABadOverrideItIsBadInput) {
-  EXPECT_EQ(run("plan " + task("cube") + " --json").status, 2);
+// §6.3.1: start a top edge, goal the bottom, sticking termination: one spring motion below the bottom that
+// may stop only on the bottom face; the verifier finds the planned strategy reliable and every rollout
+// reaches the goal; -o writes the task with the strategy, which loads.
+TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
+  const std::string out = testing::TempDir() + "/cube_planned.yaml";
+  const Result r = run("plan " + task("cube") + " --check 40 --threads 2 --json -o " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["found"].get<bool>());
+  ASSERT_EQ(j["motions"].size(), 1u);
+  EXPECT_LT(j["motions"][0]["commanded"][2].get<double>(), -1.0);  // behind the bottom's plane
+  EXPECT_GT(j["motions"][0]["depth"].get<double>(), 0.0);
+  EXPECT_FALSE(j["motions"][0]["cpositions"].empty());
+  EXPECT_EQ(j["steps"][0]["state"], nlohmann::json::array({"e4"}));    // the top edge y = -1, z = 1
+  EXPECT_EQ(j["steps"][0]["targets"], nlohmann::json::array({"f2"}));  // the bottom face
+  EXPECT_TRUE(j["decision_free"].get<bool>());
+  EXPECT_EQ(j["strategy"], nlohmann::json::array({"planned_1"}));
+  EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
+  EXPECT_EQ(j["check"]["rollouts"], 40);
+  EXPECT_EQ(j["check"]["successes"], 40);
+  EXPECT_EQ(j["check"]["outside"], 0);
+  const Result v = run("verify " + out + " --strategy planned --json");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_TRUE(nlohmann::json::parse(v.out)["reliable"].get<bool>());
+}
+
+TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {
+  EXPECT_EQ(run("plan " + task("cube") + " --termination force --json").status, 2);
   const Result r = run("plan " + task("cube") + " --states --theta-f 4 --json");
   EXPECT_EQ(r.status, 2);
   const auto j = nlohmann::json::parse(r.out);

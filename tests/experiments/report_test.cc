@@ -956,6 +956,40 @@ TEST(Report, TeachingSessionsSectionListsEachSession) {
   EXPECT_NE(html.find("<a href=\"../teach/hole_view/index.html\">3-D view</a>"), std::string::npos) << html;
 }
 
+TEST(Report, PlannedStrategiesSectionListsEachPlan) {
+  const json found = {
+      {"task", "cube"},
+      {"found", true},
+      {"termination", "sticking"},
+      {"strategy", {"planned_1"}},
+      {"motions", {{{"name", "planned_1"}, {"commanded", {0.0, 0.0, -2.0}}, {"depth", 0.07}}}},
+      {"steps", {{{"state", {"e4"}}, {"targets", {"f2"}}}}},
+      {"verified", {{"reliable", true}, {"failure", ""}}},
+      {"check", {{"rollouts", 200}, {"successes", 200}, {"outside", 0}, {"seed", 1}}},
+      {"seconds", 4.5}};
+  const json not_found = {{"task", "hole"},
+                          {"found", false},
+                          {"termination", "sticking"},
+                          {"reason", "no strategy of at most 3 motions"},
+                          {"strategy", nullptr},
+                          {"seconds", 2.0}};
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  EXPECT_EQ(cmt::report::render_markdown(content).find("Planned strategies"), std::string::npos);
+  content.planner = cmt::report::planner_table({found, not_found});
+  const std::string md = cmt::report::render_markdown(content);
+  EXPECT_NE(
+      md.find("| cube | yes | planned_1 | planned_1 to (0, 0, -2), depth 0.07, from e4, may stop in f2 | "
+              "reliable | 200 / 200 reached the goal, 0 ends outside the prediction (seed 1) | 4.5 |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| hole | no: no strategy of at most 3 motions |  |  |  | not run | 2 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(cmt::report::render_html(content).find("<h2 id=\"planner\">Planned strategies</h2>"),
+            std::string::npos);
+}
+
 TEST(Report, TeachingSessionsSectionListsABackprojection) {
   const json backprojection = {
       {"task", "two_blocks"},

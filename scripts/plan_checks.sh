@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The built-in planner runs of the main job (docs/planner.md "In the main job"): each `cmt plan --json`
+# result written to DIR (default out/plan) for `cmt report --plan`, with the planned task (-o) and the
+# planned strategy's physics check (MuJoCo rollouts, seed 1). Exit status 1 from cmt plan (no plan, not
+# reliable under the verifier, or a failed rollout) is recorded in the JSON; 2 (bad input) stops.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+dir="${1:-out/plan}"
+mkdir -p "$dir"
+
+plan() {  # plan TASK [cmt plan options...]
+  local task="$1"
+  shift
+  build/bin/cmt plan "models/tasks/$task.yaml" --json -o "$dir/${task}_planned.yaml" "$@" >"$dir/${task}.json" ||
+    {
+      status=$?
+      echo "cmt plan $task failed with status $status" >&2
+      [ "$status" -eq 2 ] && exit 2
+    }
+}
+
+plan cube --check 100 --threads 2 --seed 1  # Buckley Sec 6.3.1: one motion that sticks on the cube bottom
+exit 0

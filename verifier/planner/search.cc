@@ -1,0 +1,304 @@
+// Buckley's planner search over sticking arcs (search.h, §6.5, §6.6).
+#include "verifier/planner/search.h"
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "verifier/sensing.h"
+
+namespace cmt::planner {
+namespace {
+
+// The seed grid's points per axis, and the seeds whose cells are built per target set.
+constexpr int kSeedGrid = 12;
+constexpr int kSeedsPerTargetSet = 8;
+
+class Search {
+ public:
+  Search(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request)
+      : sim_(simulation), cspace_(cspace), req_(request) {}
+
+  PlanResult run() {
+    PlanResult out;
+    out.start_states = confusable_sets(cspace_, req_.start_atoms, req_.eps_s, req_.theta_f);
+    if (out.start_states.empty()) {
+      out.reason = "the start lies on no atom";
+      return out;
+    }
+    while (true) {
+      if (all_succeed(out.start_states)) {
+        extract(out);
+        break;
+      }
+      const auto next = pick();
+      if (!next) {
+        out.reason = "no strategy of at most " + std::to_string(req_.max_motions) +
+                     " motions: every reachable state was expanded";
+        break;
+      }
+      if (out.expanded >= req_.max_expansions) {
+        out.reason = "the expansion limit (" + std::to_string(req_.max_expansions) + " states) was reached";
+        break;
+      }
+      expand(*next);
+      ++out.expanded;
+    }
+    out.expanded = static_cast<int>(graph_.size());
+    for (const auto& [state, arcs] : graph_) out.arcs += static_cast<int>(arcs.size());
+    out.confirmed = confirmed_;
+    out.rejected = rejected_;
+    out.widened = widened_;
+    return out;
+  }
+
+ private:
+  bool is_goal(const State& s) const {
+    return std::all_of(s.begin(), s.end(), [&](int a) {
+      return a < static_cast<int>(req_.goal_atom.size()) && req_.goal_atom[a];
+    });
+  }
+
+  // §6.6.2: the state's arcs, one per target set met at the seeds (seeds()): the cell of the seed whose cell
+  // is deepest among the first kSeedsPerTargetSet with those targets, commanded at the cell's interior point;
+  // arcs that may end in free space, or whose heads are too big, are left out.
+  void expand(const State& state) {
+    std::map<std::vector<int>, std::vector<Vec3>> by_targets;
+    for (const Vec3& p : seeds()) {
+      std::vector<int> targets = sim_.targets_at(state, p);
+      if (targets.empty() || targets.back() == sim_.free_atom()) continue;
+      auto& list = by_targets[targets];
+      if (static_cast<int>(list.size()) < kSeedsPerTargetSet) list.push_back(p);
+    }
+    std::vector<GraphArc> out;
+    for (const auto& [targets, points] : by_targets) {
+      std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> cells;
+      for (const Vec3& p : points) {
+        CPositionSet cell = sim_.cell_at(state, p);
+        const auto interior = cell.interior_point();
+        if (!interior) continue;
+        const std::vector<int> at = sim_.targets_at(state, interior->point);
+        if (!std::includes(targets.begin(), targets.end(), at.begin(), at.end()))
+          continue;  // not in p's cell
+        cells.emplace_back(std::move(cell), *interior);
+      }
+      if (cells.empty()) continue;
+      std::stable_sort(cells.begin(), cells.end(),
+                       [](const auto& a, const auto& b) { return a.second.depth > b.second.depth; });
+      GraphArc arc{Arc{targets, cells[0].first},
+                   cells[0].second.point,
+                   cells[0].second.depth,
+                   confusable_sets(cspace_, targets, req_.eps_s, req_.theta_f),
+                   {}};
+      arc.alternatives.assign(std::make_move_iterator(cells.begin() + 1),
+                              std::make_move_iterator(cells.end()));
+      if (usable(arc)) out.push_back(std::move(arc));
+    }
+    // Best first: the arcs whose targets are nearest the goal are tried first.
+    std::stable_sort(out.begin(), out.end(), [&](const GraphArc& a, const GraphArc& b) {
+      return goal_distance(a.arc.targets) < goal_distance(b.arc.targets);
+    });
+    graph_[state] = std::move(out);
+  }
+
+  // Commanded positions the arrangement is explored at: the centres of a kSeedGrid^3 grid over the domain,
+  // and the vertex centroids of the pieces of the goal atoms' sticking regions (where sticking in the goal
+  // is possible or sure).
+  const std::vector<Vec3>& seeds() {
+    if (!seeds_.empty()) return seeds_;
+    const AxisBox& box = sim_.domain();
+    const Vec3 step = (box.max - box.min) / kSeedGrid;
+    for (int i = 0; i < kSeedGrid; ++i)
+      for (int j = 0; j < kSeedGrid; ++j)
+        for (int k = 0; k < kSeedGrid; ++k)
+          seeds_.push_back(box.min + Vec3((i + 0.5) * step.x(), (j + 0.5) * step.y(), (k + 0.5) * step.z()));
+    for (int g = 0; g < static_cast<int>(req_.goal_atom.size()); ++g) {
+      if (!req_.goal_atom[static_cast<std::size_t>(g)]) continue;
+      for (const CPositionSet* set : {&sim_.strong_sticking(g), &sim_.weak_sticking(g)})
+        for (const ConvexPiece& piece : set->pieces()) {
+          Vec3 c = Vec3::Zero();
+          for (const Vec3& v : piece.vertices) c += v;
+          seeds_.push_back(c / static_cast<double>(piece.vertices.size()));
+        }
+    }
+    return seeds_;
+  }
+
+  double goal_distance(const std::vector<int>& atoms) const {
+    double worst = 0;
+    for (int a : atoms) {
+      double best = std::numeric_limits<double>::infinity();
+      if (a < static_cast<int>(req_.goal_atom.size()) && req_.goal_atom[a]) best = 0;
+      for (int g = 0; g < static_cast<int>(req_.goal_atom.size()) && best > 0; ++g)
+        if (req_.goal_atom[g]) best = std::min(best, atom_distance(cspace_, a, g));
+      worst = std::max(worst, best);
+    }
+    return worst;
+  }
+
+  // §6.5.1: a state succeeds if it is a goal or one of its arcs succeeds; an arc succeeds if all its heads
+  // do; a state met again while active fails (strategies have no loops). Depth bounds the motions.
+  bool success(const State& s, int depth, std::set<State>& active) {
+    if (is_goal(s)) return true;
+    if (depth == 0 || active.count(s)) return false;
+    const auto it = graph_.find(s);
+    if (it == graph_.end()) return false;
+    active.insert(s);
+    bool ok = false;
+    for (std::size_t i = 0; i < it->second.size() && !ok; ++i) {
+      GraphArc& arc = it->second[i];
+      if (arc.check == GraphArc::Check::kRejected) continue;
+      const auto heads_succeed = [&] {
+        return std::all_of(arc.heads.begin(), arc.heads.end(),
+                           [&](const State& h) { return success(h, depth - 1, active); });
+      };
+      ok = heads_succeed();
+      if (ok && req_.confirm && arc.check == GraphArc::Check::kUnchecked) {
+        current_state_ = s;
+        ok = confirm(arc) && heads_succeed();  // the heads may have grown
+      }
+      if (ok) choice_[{s, depth}] = i;
+    }
+    active.erase(s);
+    return ok;
+  }
+
+  // The arc's cell, or the first alternative, that `confirm` accepts (each cell checked once), with the
+  // targets widened by its prediction and the heads rebuilt. False when every cell is rejected or the
+  // widened heads are too big.
+  bool confirm(GraphArc& arc) {
+    while (true) {
+      const auto ends = req_.confirm(current_state_, arc.commanded);
+      if (ends) {
+        ++confirmed_;
+        arc.check = GraphArc::Check::kConfirmed;
+        const std::vector<int> widened = target_union(arc.arc.targets, *ends);
+        if (widened != arc.arc.targets) {
+          ++widened_;
+          arc.arc.targets = widened;
+          arc.heads = confusable_sets(cspace_, widened, req_.eps_s, req_.theta_f);
+        }
+        if (usable(arc)) return true;
+        arc.check = GraphArc::Check::kRejected;
+        return false;
+      }
+      ++rejected_;
+      if (arc.alternatives.empty()) {
+        arc.check = GraphArc::Check::kRejected;
+        return false;
+      }
+      auto& [cell, interior] = arc.alternatives.front();
+      arc.arc.cpositions = std::move(cell);
+      arc.commanded = interior.point;
+      arc.depth = interior.depth;
+      arc.alternatives.erase(arc.alternatives.begin());
+    }
+  }
+
+  bool usable(const GraphArc& arc) const {
+    return std::all_of(arc.heads.begin(), arc.heads.end(), [&](const State& h) {
+      return is_goal(h) || static_cast<int>(h.size()) <= req_.max_atoms;
+    });
+  }
+
+  bool all_succeed(const std::vector<State>& states) {
+    choice_.clear();
+    std::set<State> active;
+    return std::all_of(states.begin(), states.end(),
+                       [&](const State& s) { return success(s, req_.max_motions, active); });
+  }
+
+  // The unexpanded non-goal state nearest the goal among those reachable from the start in fewer than
+  // max_motions arcs.
+  std::optional<State> pick() const {
+    std::optional<State> best;
+    double best_distance = std::numeric_limits<double>::infinity();
+    std::set<State> seen;
+    std::vector<std::pair<State, int>> queue;
+    for (const State& s : confusable_sets(cspace_, req_.start_atoms, req_.eps_s, req_.theta_f))
+      queue.push_back({s, 0});
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+      const auto [s, depth] = queue[i];
+      if (!seen.insert(s).second || is_goal(s) || depth >= req_.max_motions) continue;
+      const auto it = graph_.find(s);
+      if (it == graph_.end()) {
+        const double d = goal_distance(s);
+        if (d < best_distance) best_distance = d, best = s;
+        continue;
+      }
+      for (const GraphArc& arc : it->second)
+        for (const State& h : arc.heads) queue.push_back({h, depth + 1});
+    }
+    return best;
+  }
+
+  void extract(PlanResult& out) const {
+    std::set<State> listed;
+    std::function<void(const State&, int)> walk = [&](const State& s, int depth) {
+      if (is_goal(s) || !listed.insert(s).second) return;
+      const GraphArc& arc = graph_.at(s)[choice_.at({s, depth})];
+      out.steps.push_back({s, arc});
+      for (const State& h : arc.heads) walk(h, depth - 1);
+    };
+    for (const State& s : out.start_states) walk(s, req_.max_motions);
+    out.found = true;
+    out.decision_free = out.start_states.size() == 1;
+    for (std::size_t i = 0; i < out.steps.size() && out.decision_free; ++i) {
+      const auto& heads = out.steps[i].arc.heads;
+      const bool last = i + 1 == out.steps.size();
+      out.decision_free =
+          last ? std::all_of(heads.begin(), heads.end(), [&](const State& h) { return is_goal(h); })
+               : heads.size() == 1 && heads[0] == out.steps[i + 1].state;
+    }
+  }
+
+  AtomSimulation& sim_;
+  const CSpace& cspace_;
+  const PlanRequest& req_;
+  std::map<State, std::vector<GraphArc>> graph_;
+  std::map<std::pair<State, int>, std::size_t> choice_;
+  std::vector<Vec3> seeds_;
+  int confirmed_ = 0, rejected_ = 0, widened_ = 0;
+  State current_state_;
+};
+
+}  // namespace
+
+std::vector<State> confusable_sets(const CSpace& cspace, const std::vector<int>& atoms, double eps_s,
+                                   double theta_f) {
+  // Bron–Kerbosch without pivoting: the sets are small (the targets of one arc).
+  std::vector<State> out;
+  std::function<void(State, std::vector<int>, std::vector<int>)> grow = [&](State r, std::vector<int> p,
+                                                                            std::vector<int> x) {
+    if (p.empty() && x.empty()) {
+      std::sort(r.begin(), r.end());
+      out.push_back(r);
+      return;
+    }
+    while (!p.empty()) {
+      const int v = p.back();
+      p.pop_back();
+      std::vector<int> np, nx;
+      for (int w : p)
+        if (confusable(cspace, v, w, eps_s, theta_f)) np.push_back(w);
+      for (int w : x)
+        if (confusable(cspace, v, w, eps_s, theta_f)) nx.push_back(w);
+      State nr = r;
+      nr.push_back(v);
+      grow(nr, np, nx);
+      x.push_back(v);
+    }
+  };
+  grow({}, atoms, {});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request) {
+  return Search(simulation, cspace, request).run();
+}
+
+}  // namespace cmt::planner

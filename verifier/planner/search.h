@@ -1,0 +1,74 @@
+// Buckley's planner search (§6.5, §6.6) over type 1 (sticking) arcs: states are sets of atoms sensing cannot
+// tell apart; a state's arcs are the cells of the simulation's arrangement (simulation.h) met at seed
+// commanded positions, one per target set; a best-first expansion with AND/OR evaluation returns the first
+// strategy that reaches goal states in every branch.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/cspace.h"
+#include "verifier/planner/simulation.h"
+
+namespace cmt::planner {
+
+struct PlanRequest {
+  std::vector<int> start_atoms;  // the atoms the robot may start in
+  std::vector<bool> goal_atom;   // per atom: its closure lies in the goal
+  double eps_s = 0, theta_f = 0;
+  int max_atoms = 3;         // states of more atoms (that are not goal states) are not expanded
+  int max_motions = 3;       // the longest branch of a strategy
+  int max_expansions = 200;  // states expanded before the search gives up
+  // An independent prediction of one motion before the search relies on it: the atoms where the spring
+  // motion to `commanded`, started anywhere in the state's atoms, may stop, or nothing when it may fail
+  // otherwise (the verifier, verifier_check.h: it also finds motions that may slide forever, which Buckley's
+  // termination model leaves out). The arc's targets become the union of both predictions (each is sound,
+  // so the union is). Unset: every arc is taken as the simulation gives it.
+  std::function<std::optional<std::vector<int>>(const std::vector<int>& state, const Vec3& commanded)>
+      confirm;
+};
+
+using State = std::vector<int>;  // ascending atom ids
+
+// An arc of the state graph: a cell of commanded positions from the source state with the atoms they may
+// stop in, the commanded position chosen in it (CPositionSet::interior_point) and its target states (heads).
+struct GraphArc {
+  Arc arc;
+  Vec3 commanded;
+  double depth = 0;          // of `commanded` inside its piece
+  std::vector<State> heads;  // the maximal confusable sets of the targets
+  // Other cells with the same simulated targets, deepest first, tried in turn when `confirm` rejects this
+  // one.
+  std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> alternatives;
+  enum class Check { kUnchecked, kConfirmed, kRejected };
+  Check check = Check::kUnchecked;
+};
+
+// A step of the found strategy: in `state`, command `arc`.
+struct PlanStep {
+  State state;
+  GraphArc arc;
+};
+
+struct PlanResult {
+  bool found = false;
+  std::string reason;  // why nothing was found (limits, or the graph was exhausted)
+  std::vector<State> start_states;
+  std::vector<PlanStep> steps;  // the solution, every state of it with its chosen arc (start states first)
+  int expanded = 0;             // states expanded
+  int arcs = 0;                 // arcs built
+  int confirmed = 0, rejected = 0;  // cells the confirm check accepted and rejected
+  int widened = 0;                  // accepted cells whose targets the check widened
+  bool decision_free = false;  // the solution is one chain of motions (each step but the last has one head)
+};
+
+// The maximal subsets of `atoms` whose atoms are pairwise confusable (Def 6.1): the states the robot may
+// find itself in after terminating somewhere in `atoms`.
+std::vector<State> confusable_sets(const CSpace& cspace, const std::vector<int>& atoms, double eps_s,
+                                   double theta_f);
+
+PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request);
+
+}  // namespace cmt::planner
