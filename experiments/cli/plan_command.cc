@@ -2,6 +2,7 @@
 // primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--max-atoms K] [--max-motions M]
 // --json [-o OUT.yaml]`: the planner's search over sticking arcs (§6.5–6.7), the planned strategy checked by
 // the verifier (docs/planner.md).
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -81,20 +82,37 @@ nlohmann::json cpositions_json(const planner::CPositionSet& set, int dimension) 
   return pieces;
 }
 
-std::string planned_motion_name(std::size_t step) { return "planned_" + std::to_string(step + 1); }
+// planned_1, planned_2, ...; when the task already has such a motion (a task written by -o planned again):
+// planned_2_1, ..., the first prefix none of whose n names is taken.
+std::vector<std::string> planned_motion_names(const Task& task, std::size_t n) {
+  for (int k = 1;; ++k) {
+    const std::string prefix = k == 1 ? "planned_" : "planned_" + std::to_string(k) + "_";
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < n; ++i) names.push_back(prefix + std::to_string(i + 1));
+    if (std::none_of(names.begin(), names.end(), [&](const std::string& m) { return task.find_motion(m); }))
+      return names;
+  }
+}
 
 // The planned strategy written into the task (decision-free plans only), verified, and written to -o.
 void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask& task,
-                  const planner::PlanResult& plan, nlohmann::json& out) {
+                  const planner::PlanResult& plan, const std::vector<std::string>& names,
+                  nlohmann::json& out) {
+  if (plan.steps.empty()) {
+    out["strategy"] = nlohmann::json::array();
+    out["strategy_reason"] = "the start lies in the goal: no motion is needed";
+    return;
+  }
   if (!plan.decision_free) {
     out["strategy"] = nullptr;
     out["strategy_reason"] =
-        "the plan branches on sensed states; only decision-free plans are written as strategies";
+        "the plan branches on sensed states; only decision-free plans are written as strategies (and "
+        "verified)";
     return;
   }
   std::vector<AddedMotion> motions;
   for (std::size_t i = 0; i < plan.steps.size(); ++i)
-    motions.push_back({planned_motion_name(i), Motion::Kind::kSpring, plan.steps[i].arc.commanded});
+    motions.push_back({names[i], Motion::Kind::kSpring, plan.steps[i].arc.commanded});
   const std::string name = free_strategy_name(task.task, "planned");
   const std::string planned = task_yaml_with_motions(text, task.task, motions, name, "the planner's");
   const auto planned_task = load_task_from_string(planned, cli.task);
@@ -131,6 +149,9 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   const auto start = std::chrono::steady_clock::now();
   const std::string text = text_with_overrides(cli);
   const auto task = load_task_from_string(text, cli.task);
+  if (task->task.dimension != 3)
+    throw TaskError(cli.task, "dimension",
+                    "the planner needs a 3-D task (its commanded positions vary in y)");
   const CSpace& c = task->cspace;
   const Uncertainty& u = task->task.uncertainty;
   planner::PlanRequest request;
@@ -153,25 +174,29 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"confirmed", plan.confirmed}, {"rejected", plan.rejected},
                         {"widened", plan.widened},     {"decision_free", plan.decision_free}};
   nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
+  const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
   for (std::size_t i = 0; i < plan.steps.size(); ++i) {
     const planner::GraphArc& arc = plan.steps[i].arc;
-    motions.push_back({{"name", planned_motion_name(i)},
+    motions.push_back({{"name", names[i]},
                        {"commanded", point_json(arc.commanded, task->task.dimension)},
                        {"depth", arc.depth},
                        {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)}});
     steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
-                     {"motion", planned_motion_name(i)},
+                     {"motion", names[i]},
                      {"targets", atom_names(c, arc.arc.targets)},
                      {"heads", states_json(c, arc.heads)}});
   }
   out["motions"] = motions;
   out["steps"] = steps;
   if (plan.found)
-    add_strategy(cli, text, *task, plan, out);
+    add_strategy(cli, text, *task, plan, names, out);
   else
     out["reason"] = plan.reason, out["strategy"] = nullptr;
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  bool verified = plan.found && (!out.contains("verified") || out["verified"]["reliable"].get<bool>());
+  // Success: a plan whose strategy the verifier found reliable (or no motion needed) and whose rollouts, if
+  // run, all reached the goal. A branching plan is not verified: exit 1 with its strategy_reason.
+  bool verified = plan.found && (plan.steps.empty() ||
+                                 (out.contains("verified") && out["verified"]["reliable"].get<bool>()));
   if (out.contains("check"))
     verified =
         verified && out["check"]["outside"] == 0 && out["check"]["successes"] == out["check"]["rollouts"];

@@ -69,10 +69,17 @@ TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
   const Result v = run("verify " + out + " --strategy planned --json");
   EXPECT_EQ(v.status, 0);
   EXPECT_TRUE(nlohmann::json::parse(v.out)["reliable"].get<bool>());
+  // Planning the written task again takes names it does not use yet.
+  const auto again = nlohmann::json::parse(run("plan " + out + " --json").out);
+  EXPECT_EQ(again["strategy"], nlohmann::json::array({"planned_2_1"}));
+  EXPECT_EQ(again["strategy_name"], "planned_2");
 }
 
 TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {
   EXPECT_EQ(run("plan " + task("cube") + " --termination force --json").status, 2);
+  const Result planar = run("plan " + task("planar_blocks") + " --json");
+  EXPECT_EQ(planar.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(planar.out)["error"]["key"], "dimension");
   const Result r = run("plan " + task("cube") + " --states --theta-f 4 --json");
   EXPECT_EQ(r.status, 2);
   const auto j = nlohmann::json::parse(r.out);

@@ -230,17 +230,21 @@ class Search {
         continue;
       }
       for (const GraphArc& arc : it->second)
-        for (const State& h : arc.heads) queue.push_back({h, depth + 1});
+        if (arc.check != GraphArc::Check::kRejected)
+          for (const State& h : arc.heads) queue.push_back({h, depth + 1});
     }
     return best;
   }
 
+  // The solution tree by motions left: every recorded choice at depth d is an arc whose heads succeeded at
+  // d - 1 (and recorded their own choices), so the walk ends in goals after at most max_motions arcs. Keying
+  // by state alone could join choices made under different active sets into a loop.
   void extract(PlanResult& out) const {
-    std::set<State> listed;
+    std::set<std::pair<State, int>> listed;
     std::function<void(const State&, int)> walk = [&](const State& s, int depth) {
-      if (is_goal(s) || !listed.insert(s).second) return;
+      if (is_goal(s) || !listed.insert({s, depth}).second) return;
       const GraphArc& arc = graph_.at(s)[choice_.at({s, depth})];
-      out.steps.push_back({s, arc});
+      out.steps.push_back({s, depth, arc});
       for (const State& h : arc.heads) walk(h, depth - 1);
     };
     for (const State& s : out.start_states) walk(s, req_.max_motions);

@@ -24,8 +24,8 @@ struct PlanRequest {
   // An independent prediction of one motion before the search relies on it: the atoms where the spring
   // motion to `commanded`, started anywhere in the state's atoms, may stop, or nothing when it may fail
   // otherwise (the verifier, verifier_check.h: it also finds motions that may slide forever, which Buckley's
-  // termination model leaves out). The arc's targets become the union of both predictions (each is sound,
-  // so the union is). Unset: every arc is taken as the simulation gives it.
+  // termination model leaves out). The arc's targets become the union of both predictions (the verifier's
+  // is sound, so the union is). Unset: every arc is taken as the simulation gives it.
   std::function<std::optional<std::vector<int>>(const std::vector<int>& state, const Vec3& commanded)>
       confirm;
 };
@@ -46,9 +46,11 @@ struct GraphArc {
   Check check = Check::kUnchecked;
 };
 
-// A step of the found strategy: in `state`, command `arc`.
+// A step of the found strategy: in `state`, with at most `motions_left` motions to go, command `arc`. The
+// solution is a tree unrolled by motions left, so a state may appear at several depths (never in a loop).
 struct PlanStep {
   State state;
+  int motions_left = 0;
   GraphArc arc;
 };
 

@@ -116,6 +116,50 @@ std::vector<HalfSpace> facets(const std::vector<Vec3>& points, const std::vector
   return out;
 }
 
+// The rays that span cone(rays): when the rays are pointed (all within 90 degrees of their mean, by a
+// margin), those whose central projection onto the plane across the mean is a corner of the projections' 2-D
+// convex hull (points on the hull's edges are kept); otherwise all of them. Only narrows facets()'s candidate
+// directions: the validity test still uses every ray.
+std::vector<Vec3> extreme_rays(const std::vector<Vec3>& rays) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& r : rays)
+    if (r.norm() > 0) mean += r.normalized();
+  if (mean.norm() < 1e-9) return rays;
+  mean.normalize();
+  const Vec3 e1 = mean.unitOrthogonal(), e2 = mean.cross(e1);
+  std::vector<std::pair<Eigen::Vector2d, std::size_t>> projected;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const double along = rays[i].dot(mean);
+    if (along <= 1e-6 * rays[i].norm()) return rays;  // not pointed
+    const Vec3 q = rays[i] / along;
+    projected.push_back({Eigen::Vector2d(q.dot(e1), q.dot(e2)), i});
+  }
+  std::sort(projected.begin(), projected.end(), [](const auto& a, const auto& b) {
+    return a.first.x() < b.first.x() || (a.first.x() == b.first.x() && a.first.y() < b.first.y());
+  });
+  // Andrew's monotone chain, keeping collinear points (a right turn, strictly, removes).
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<std::size_t> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (std::size_t k = 0; k < projected.size(); ++k) {
+      const auto& pt = projected[pass == 0 ? k : projected.size() - 1 - k];
+      while (hull.size() >= base + 2 &&
+             cross(projected[hull[hull.size() - 2]].first, projected[hull.back()].first, pt.first) < -1e-12)
+        hull.pop_back();
+      hull.push_back(pass == 0 ? k : projected.size() - 1 - k);
+    }
+  }
+  std::vector<Vec3> out;
+  std::vector<bool> taken(rays.size(), false);
+  for (std::size_t h : hull)
+    if (!taken[projected[h].second])
+      taken[projected[h].second] = true, out.push_back(rays[projected[h].second]);
+  return out;
+}
+
 }  // namespace
 
 std::vector<Vec3> atom_points(const CSpace& cspace, int atom) {
@@ -288,7 +332,7 @@ CPositionSet AtomSimulation::flight_reach(int from, int to) const {
   for (std::size_t i = 0; i < target.size(); ++i)
     if (target.size() > 1) directions.push_back(target[(i + 1) % target.size()] - target[i]);
   for (int axis = 0; axis < 3; ++axis) directions.push_back(Vec3::Unit(axis));
-  for (const Vec3& r : rays)
+  for (const Vec3& r : extreme_rays(rays))
     if (r.norm() > 0) directions.push_back(r.normalized());
   std::vector<HalfSpace> hs = facets(grown, rays, directions, scale);
   if (hs.empty()) return CPositionSet::domain(domain_);

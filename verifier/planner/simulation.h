@@ -2,8 +2,9 @@
 // spring: which atoms a motion commanded to p may stop in, from a set of start atoms, and a convex set of
 // commanded positions around p that stop nowhere else (an arc's cpositions). docs/planner.md, "Simulation".
 //
-// The sets, each an over-approximation of Buckley's (a larger weak set only makes arcs less confident, never
-// wrong):
+// The sets, each Buckley's or an over-approximation of it (a larger weak set only makes arcs less confident,
+// never wrong); the lift-off rule of connected reaching is the thesis's and does not bound paths that
+// overshoot (docs/planner.md), which the search's verifier check covers:
 //   - stop in B (§6.7.1): B's weak sticking region (verifier/spring.h);
 //   - leave B (§6.7.2): p outside S_B, the strong sticking region of B, and in weak_reach(B, B'). Every atom
 //     B' ≠ B is a candidate (Buckley drops unconnected edges and vertices as unlikely; a sound set cannot);
