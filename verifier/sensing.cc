@@ -67,13 +67,23 @@ double force_angle_lower_bound(const FrictionCone& ca, const FrictionCone& cb) {
   return best;
 }
 
-bool disambiguable(const CSpace& cspace, int a, int b, double eps_s, double theta_f) {
+bool disambiguable(const CSpace& cspace, int a, int b, double eps_s, double theta_f,
+                   const std::function<const FrictionCone&(int atom)>& cone) {
   if (a == b) return false;
   if (atom_distance(cspace, a, b) > 2 * eps_s) return true;
   const std::vector<int> fa = atom_faces(cspace, a), fb = atom_faces(cspace, b);
   for (int f : fa)
     if (std::find(fb.begin(), fb.end(), f) != fb.end()) return false;  // §6.4.1: shared face
-  return force_angle_lower_bound(cspace, a, b) > 2 * theta_f;
+  return force_angle_lower_bound(cone(a), cone(b)) > 2 * theta_f;
+}
+
+bool disambiguable(const CSpace& cspace, int a, int b, double eps_s, double theta_f) {
+  FrictionCone ca, cb;
+  return disambiguable(cspace, a, b, eps_s, theta_f, [&](int atom) -> const FrictionCone& {
+    FrictionCone& c = atom == a ? ca : cb;
+    c = atom_friction_cone(cspace, atom);
+    return c;
+  });
 }
 
 }  // namespace cmt

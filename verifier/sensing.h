@@ -1,6 +1,8 @@
 // Position and force sensing (Buckley §4.5, Def 5.1, Def 6.1, §6.7.6-6.7.7).
 #pragma once
 
+#include <functional>
+
 #include "models/cspace.h"
 #include "models/friction_cone.h"
 #include "verifier/polyhedron.h"
@@ -26,6 +28,10 @@ double force_angle_lower_bound(const FrictionCone& a, const FrictionCone& b);
 // Def 6.1: two atoms are disambiguable when their closest points are more than 2 eps_s apart or their closest
 // reaction forces differ by more than 2 theta_f. Atoms sharing a face are never force-disambiguable (§6.4.1).
 bool disambiguable(const CSpace& cspace, int atom_a, int atom_b, double eps_s, double theta_f);
+// The same with the atoms' friction cones (atom_friction_cone) from `cone`, asked only when the forces
+// decide: for callers that test many pairs and keep each atom's cone.
+bool disambiguable(const CSpace& cspace, int atom_a, int atom_b, double eps_s, double theta_f,
+                   const std::function<const FrictionCone&(int atom)>& cone);
 // Def 5.1 for atoms: some pair of points within 2 eps_s whose friction cones are within 2 theta_f.
 inline bool confusable(const CSpace& cspace, int atom_a, int atom_b, double eps_s, double theta_f) {
   return !disambiguable(cspace, atom_a, atom_b, eps_s, theta_f);
