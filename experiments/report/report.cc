@@ -1,6 +1,8 @@
 #include "experiments/report/report.h"
 
+#include <algorithm>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -218,43 +220,47 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
   return runs;
 }
 
-// `cmt edr --json` objects (an object with edr_reliable and slices).
-std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::path>& files) {
+// Each file as one JSON object, after `adapt` (may be null), that holds `keys`; otherwise a TaskError naming
+// the file and the result: `noun` when it cannot be opened, `what` when it is not such a result.
+std::vector<nlohmann::json> read_json_results(const std::vector<std::filesystem::path>& files,
+                                              const std::vector<const char*>& keys, const std::string& noun,
+                                              const std::string& what,
+                                              const std::function<void(nlohmann::json&)>& adapt = nullptr) {
   std::vector<nlohmann::json> runs;
   for (const std::filesystem::path& f : files) {
     std::ifstream in(f);
-    if (!in) throw TaskError(f.string(), "", "cannot open the EDR result");
+    if (!in) throw TaskError(f.string(), "", "cannot open the " + noun);
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    // `cmt validate --edr --json`: the verdict with the check beside it, as `cmt edr --check` writes them.
-    if (j.is_object() && j.contains("verdict") && j["verdict"].is_object() && j.contains("outcomes")) {
-      nlohmann::json verdict = j["verdict"];
-      j.erase("verdict");
-      if (j.contains("seconds")) verdict["seconds"] = j["seconds"];
-      verdict["check"] = std::move(j);
-      j = std::move(verdict);
+    if (adapt && j.is_object()) adapt(j);
+    const bool has_keys = std::all_of(keys.begin(), keys.end(), [&](const char* k) { return j.contains(k); });
+    if (j.is_discarded() || !j.is_object() || !has_keys) {
+      std::string list;
+      for (std::size_t i = 0; i < keys.size(); ++i) list += (i ? " and " : "") + std::string(keys[i]);
+      throw TaskError(f.string(), "", "not a " + what + " (an object with " + list + ")");
     }
-    if (j.is_discarded() || !j.is_object() || !j.contains("edr_reliable") || !j.contains("slices"))
-      throw TaskError(f.string(), "",
-                      "not a `cmt edr --json` or `cmt validate --edr --json` result (an object with "
-                      "edr_reliable and slices)");
     runs.push_back(std::move(j));
   }
   return runs;
 }
 
+// `cmt edr --json` objects (an object with edr_reliable and slices).
+std::vector<nlohmann::json> read_edr_runs(const std::vector<std::filesystem::path>& files) {
+  // `cmt validate --edr --json`: the verdict with the check beside it, as `cmt edr --check` writes them.
+  const auto unwrap_validate = [](nlohmann::json& j) {
+    if (!j.contains("verdict") || !j["verdict"].is_object() || !j.contains("outcomes")) return;
+    nlohmann::json verdict = j["verdict"];
+    j.erase("verdict");
+    if (j.contains("seconds")) verdict["seconds"] = j["seconds"];
+    verdict["check"] = std::move(j);
+    j = std::move(verdict);
+  };
+  return read_json_results(files, {"edr_reliable", "slices"}, "EDR result",
+                           "`cmt edr --json` or `cmt validate --edr --json` result", unwrap_validate);
+}
+
 // `cmt plan --json` objects (an object with found and termination).
 std::vector<nlohmann::json> read_plan_runs(const std::vector<std::filesystem::path>& files) {
-  std::vector<nlohmann::json> runs;
-  for (const std::filesystem::path& f : files) {
-    std::ifstream in(f);
-    if (!in) throw TaskError(f.string(), "", "cannot open the planner result");
-    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("found") || !j.contains("termination"))
-      throw TaskError(f.string(), "",
-                      "not a `cmt plan --json` result (an object with found and termination)");
-    runs.push_back(std::move(j));
-  }
-  return runs;
+  return read_json_results(files, {"found", "termination"}, "planner result", "`cmt plan --json` result");
 }
 
 // Per EDR result with a physics check, its outcomes against the first model parameter (edr_figure.h) in

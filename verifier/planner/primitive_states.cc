@@ -1,11 +1,6 @@
 // Primitive-state enumeration (primitive_states.h, Buckley §6.4.1).
 #include "verifier/planner/primitive_states.h"
 
-#include <optional>
-
-#include "verifier/atom_cone.h"
-#include "verifier/sensing.h"
-
 namespace cmt::planner {
 namespace {
 
@@ -14,23 +9,8 @@ namespace {
 // the last atom backwards, each state is extended only while it stays primitive (and within max_atoms).
 class Enumerator {
  public:
-  Enumerator(const CSpace& cspace, double eps_s, double theta_f, int max_atoms, std::size_t max_states)
-      : n_(cspace.atom_count()), max_atoms_(max_atoms), max_states_(max_states) {
-    confusable_.assign(static_cast<std::size_t>(n_) * n_, false);
-    // Each atom's friction cone built once, when a pair first needs it (building one is the costly part).
-    std::vector<std::optional<FrictionCone>> cones(static_cast<std::size_t>(n_));
-    const auto cone = [&](int atom) -> const FrictionCone& {
-      auto& c = cones[static_cast<std::size_t>(atom)];
-      if (!c) c = atom_friction_cone(cspace, atom);
-      return *c;
-    };
-    for (int a = 0; a < n_; ++a)
-      for (int b = a + 1; b < n_; ++b)
-        if (!disambiguable(cspace, a, b, eps_s, theta_f, cone)) {
-          confusable_[index(a, b)] = true;
-          confusable_[index(b, a)] = true;
-        }
-  }
+  Enumerator(const Confusability& confusable, int max_atoms, std::size_t max_states)
+      : n_(confusable.atoms()), max_atoms_(max_atoms), max_states_(max_states), confusable_(confusable) {}
 
   PrimitiveStates run() {
     PrimitiveStates out;
@@ -51,11 +31,9 @@ class Enumerator {
   }
 
  private:
-  std::size_t index(int a, int b) const { return static_cast<std::size_t>(a) * n_ + b; }
-
   bool confusable_with_all(int atom, const std::vector<int>& state) const {
     for (int b : state)
-      if (!confusable_[index(atom, b)]) return false;
+      if (!confusable_(atom, b)) return false;
     return true;
   }
 
@@ -72,14 +50,18 @@ class Enumerator {
   int n_;
   int max_atoms_;
   std::size_t max_states_;
-  std::vector<bool> confusable_;
+  const Confusability& confusable_;
 };
 
 }  // namespace
 
 PrimitiveStates primitive_states(const CSpace& cspace, double eps_s, double theta_f, int max_atoms,
                                  std::size_t max_states) {
-  return Enumerator(cspace, eps_s, theta_f, max_atoms, max_states).run();
+  return primitive_states(Confusability(cspace, eps_s, theta_f), max_atoms, max_states);
+}
+
+PrimitiveStates primitive_states(const Confusability& confusable, int max_atoms, std::size_t max_states) {
+  return Enumerator(confusable, max_atoms, max_states).run();
 }
 
 }  // namespace cmt::planner

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/cspace.h"
+#include "verifier/planner/confusability.h"
 
 namespace cmt::planner {
 
@@ -24,6 +25,9 @@ struct PrimitiveStates {
 // keeps it primitive exactly when the new atom is confusable with each of its atoms, so no non-primitive set
 // is ever extended). States have at most `max_atoms` atoms (0: no limit); at most `max_states` are listed.
 PrimitiveStates primitive_states(const CSpace& cspace, double eps_s, double theta_f, int max_atoms = 0,
+                                 std::size_t max_states = 1'000'000);
+// The same over a table already built.
+PrimitiveStates primitive_states(const Confusability& confusable, int max_atoms = 0,
                                  std::size_t max_states = 1'000'000);
 
 }  // namespace cmt::planner

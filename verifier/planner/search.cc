@@ -20,11 +20,14 @@ constexpr int kSeedsPerTargetSet = 8;
 class Search {
  public:
   Search(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request)
-      : sim_(simulation), cspace_(cspace), req_(request) {}
+      : sim_(simulation),
+        cspace_(cspace),
+        req_(request),
+        confusable_(cspace, request.eps_s, request.theta_f) {}
 
   PlanResult run() {
     PlanResult out;
-    out.start_states = confusable_sets(cspace_, req_.start_atoms, req_.eps_s, req_.theta_f);
+    out.start_states = confusable_sets(confusable_, req_.start_atoms);
     if (out.start_states.empty()) {
       out.reason = "the start lies on no atom";
       return out;
@@ -32,7 +35,16 @@ class Search {
     while (true) {
       if (all_succeed(out.start_states)) {
         extract(out);
-        break;
+        if (accept_chain(out)) break;
+        out.found = false;
+        out.steps.clear();
+        out.decision_free = false;
+        if (out.chains_checked >= req_.max_chain_checks) {
+          out.reason = "the check limit (" + std::to_string(req_.max_chain_checks) +
+                       " candidate strategies refuted by the verifier) was reached";
+          break;
+        }
+        continue;  // the refuted arc changed: evaluate again
       }
       const auto next = pick();
       if (!next) {
@@ -73,29 +85,17 @@ class Search {
       auto& list = by_targets[targets];
       if (static_cast<int>(list.size()) < kSeedsPerTargetSet) list.push_back(p);
     }
+    // Smallest target sets first: a set that holds the targets of an arc already built is skipped.
+    std::vector<const std::pair<const std::vector<int>, std::vector<Vec3>>*> by_size;
+    for (const auto& entry : by_targets) by_size.push_back(&entry);
+    std::stable_sort(by_size.begin(), by_size.end(),
+                     [](const auto* a, const auto* b) { return a->first.size() < b->first.size(); });
     std::vector<GraphArc> out;
-    for (const auto& [targets, points] : by_targets) {
-      std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> cells;
-      for (const Vec3& p : points) {
-        CPositionSet cell = sim_.cell_at(state, p);
-        const auto interior = cell.interior_point();
-        if (!interior) continue;
-        const std::vector<int> at = sim_.targets_at(state, interior->point);
-        if (!std::includes(targets.begin(), targets.end(), at.begin(), at.end()))
-          continue;  // not in p's cell
-        cells.emplace_back(std::move(cell), *interior);
-      }
-      if (cells.empty()) continue;
-      std::stable_sort(cells.begin(), cells.end(),
-                       [](const auto& a, const auto& b) { return a.second.depth > b.second.depth; });
-      GraphArc arc{Arc{targets, cells[0].first},
-                   cells[0].second.point,
-                   cells[0].second.depth,
-                   confusable_sets(cspace_, targets, req_.eps_s, req_.theta_f),
-                   {}};
-      arc.alternatives.assign(std::make_move_iterator(cells.begin() + 1),
-                              std::make_move_iterator(cells.end()));
-      if (usable(arc)) out.push_back(std::move(arc));
+    for (const auto* entry : by_size) {
+      const std::vector<int>& targets = entry->first;
+      if (dominated(targets, out)) continue;
+      std::optional<GraphArc> arc = arc_for(state, targets, entry->second);
+      if (arc && usable(*arc)) out.push_back(std::move(*arc));
     }
     // Best first: the arcs whose targets are nearest the goal are tried first.
     std::stable_sort(out.begin(), out.end(), [&](const GraphArc& a, const GraphArc& b) {
@@ -104,17 +104,62 @@ class Search {
     graph_[state] = std::move(out);
   }
 
+  // The arc of one target set: the deepest of the cells of its seeds, the others its alternatives; nothing
+  // when no seed's cell has an interior point inside it.
+  std::optional<GraphArc> arc_for(const State& state, const std::vector<int>& targets,
+                                  const std::vector<Vec3>& points) {
+    std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> cells;
+    for (const Vec3& p : points) {
+      CPositionSet cell = sim_.cell_at(state, p);
+      const auto interior = cell.interior_point();
+      if (!interior) continue;
+      const std::vector<int> at = sim_.targets_at(state, interior->point);
+      if (!std::includes(targets.begin(), targets.end(), at.begin(), at.end())) continue;  // not p's cell
+      cells.emplace_back(std::move(cell), *interior);
+    }
+    if (cells.empty()) return std::nullopt;
+    std::stable_sort(cells.begin(), cells.end(),
+                     [](const auto& a, const auto& b) { return a.second.depth > b.second.depth; });
+    GraphArc arc{Arc{targets, cells[0].first},
+                 cells[0].second.point,
+                 cells[0].second.depth,
+                 confusable_sets(confusable_, targets),
+                 {}};
+    arc.alternatives.assign(std::make_move_iterator(cells.begin() + 1), std::make_move_iterator(cells.end()));
+    return arc;
+  }
+
+  // Whether `targets` holds the targets of one of `arcs`. Such a set is not built: where an arc may stop in
+  // a subset of its atoms, each head of that arc lies inside one of its heads, so the smaller arc leaves the
+  // robot no less certain where it is. This keeps a state's arcs to the minimal target sets (a few dozen
+  // instead of hundreds from a state of many atoms). It is a pruning heuristic: a larger set's cells are
+  // never tried, even when the verifier later refutes the smaller one.
+  static bool dominated(const std::vector<int>& targets, const std::vector<GraphArc>& arcs) {
+    return std::any_of(arcs.begin(), arcs.end(), [&](const GraphArc& arc) {
+      return std::includes(targets.begin(), targets.end(), arc.arc.targets.begin(), arc.arc.targets.end());
+    });
+  }
+
   // Commanded positions the arrangement is explored at: the centres of a kSeedGrid^3 grid over the domain,
-  // and the vertex centroids of the pieces of the goal atoms' sticking regions (where sticking in the goal
-  // is possible or sure).
+  // a finer one over the atoms' box grown by a quarter of its diagonal (commands near the contacts, where
+  // the arrangement's cells are small: the hole's p1 lies 2 eps_p below the bottom), and the vertex centroids
+  // of the pieces of the goal atoms' sticking regions (where sticking in the goal is possible or sure).
   const std::vector<Vec3>& seeds() {
     if (!seeds_.empty()) return seeds_;
-    const AxisBox& box = sim_.domain();
-    const Vec3 step = (box.max - box.min) / kSeedGrid;
-    for (int i = 0; i < kSeedGrid; ++i)
-      for (int j = 0; j < kSeedGrid; ++j)
-        for (int k = 0; k < kSeedGrid; ++k)
-          seeds_.push_back(box.min + Vec3((i + 0.5) * step.x(), (j + 0.5) * step.y(), (k + 0.5) * step.z()));
+    const auto add_grid = [&](const AxisBox& box) {
+      const Vec3 step = (box.max - box.min) / kSeedGrid;
+      for (int i = 0; i < kSeedGrid; ++i)
+        for (int j = 0; j < kSeedGrid; ++j)
+          for (int k = 0; k < kSeedGrid; ++k)
+            seeds_.push_back(box.min +
+                             Vec3((i + 0.5) * step.x(), (j + 0.5) * step.y(), (k + 0.5) * step.z()));
+    };
+    add_grid(sim_.domain());
+    AxisBox near = atoms_box(cspace_);
+    const double grow = (near.max - near.min).norm() / 4;
+    near.min.array() -= grow;
+    near.max.array() += grow;
+    add_grid(near);
     for (int g = 0; g < static_cast<int>(req_.goal_atom.size()); ++g) {
       if (!req_.goal_atom[static_cast<std::size_t>(g)]) continue;
       for (const CPositionSet* set : {&sim_.strong_sticking(g), &sim_.weak_sticking(g)})
@@ -140,20 +185,33 @@ class Search {
   }
 
   // §6.5.1: a state succeeds if it is a goal or one of its arcs succeeds; an arc succeeds if all its heads
-  // do; a state met again while active fails (strategies have no loops). Depth bounds the motions.
-  bool success(const State& s, int depth, std::set<State>& active) {
+  // do. Depth bounds the motions, so the recursion ends without Buckley's check for states met again while
+  // active: a state met again with fewer motions left is a new node of the tree the strategy unrolls to
+  // (extract()), never a loop. Memoized per evaluation by (state, depth). Within one evaluation the graph
+  // changes only by `confirm` checks, and an arc is checked the first time its heads succeed, before any
+  // value relies on it; a check deeper in the recursion (the same arc met again through its own heads) is
+  // caught by heads_succeed, which looks at the arc again after evaluating its heads. Unchecked arcs count
+  // as usable, so a false stays false when checks reject or widen them.
+  bool success(const State& s, int depth) {
     if (is_goal(s)) return true;
-    if (depth == 0 || active.count(s)) return false;
+    if (depth == 0) return false;
+    const auto known = memo_.find({s, depth});
+    if (known != memo_.end()) return known->second;
+    memo_[{s, depth}] = false;  // guards nothing (depth decreases) but keeps the entry's place
     const auto it = graph_.find(s);
     if (it == graph_.end()) return false;
-    active.insert(s);
     bool ok = false;
     for (std::size_t i = 0; i < it->second.size() && !ok; ++i) {
-      GraphArc& arc = it->second[i];
+      GraphArc& arc = it->second[i];  // stays in place: arcs are only added by expand(), between evaluations
       if (arc.check == GraphArc::Check::kRejected) continue;
       const auto heads_succeed = [&] {
-        return std::all_of(arc.heads.begin(), arc.heads.end(),
-                           [&](const State& h) { return success(h, depth - 1, active); });
+        const std::vector<State> heads = arc.heads;  // a check deeper in the recursion may change arc.heads
+        const bool all =
+            std::all_of(heads.begin(), heads.end(), [&](const State& h) { return success(h, depth - 1); });
+        if (arc.check == GraphArc::Check::kRejected) return false;  // refuted deeper in the recursion
+        return all &&
+               (arc.heads == heads || std::all_of(arc.heads.begin(), arc.heads.end(),
+                                                  [&](const State& h) { return success(h, depth - 1); }));
       };
       ok = heads_succeed();
       if (ok && req_.confirm && arc.check == GraphArc::Check::kUnchecked) {
@@ -162,40 +220,95 @@ class Search {
       }
       if (ok) choice_[{s, depth}] = i;
     }
-    active.erase(s);
+    memo_[{s, depth}] = ok;
     return ok;
+  }
+
+  // PlanRequest::confirm_chain on the extracted candidate: true when it holds, or when it cannot be one chain
+  // (several start states: the plan branches at once; returned unverified, as every branching plan); false
+  // after widening, moving or rejecting the arc of the first motion the verifier refutes, or after rejecting
+  // the first branching arc of a candidate that is not one chain.
+  bool accept_chain(PlanResult& out) {
+    if (!req_.confirm_chain || out.steps.empty() || out.start_states.size() > 1) return true;
+    if (!out.decision_free) {  // no chain to verify: its first branching arc goes, and the search goes on
+      for (const PlanStep& step : out.steps)
+        if (std::any_of(step.arc.heads.begin(), step.arc.heads.end(),
+                        [&](const State& h) { return !is_goal(h); }) &&
+            step.arc.heads.size() > 1) {
+          graph_.at(step.state)[step.arc_index].check = GraphArc::Check::kRejected;
+          return false;
+        }
+      return true;  // no arc branches to a non-goal head: returned unverified, as a branching plan
+    }
+    std::vector<Vec3> commanded;
+    for (const PlanStep& step : out.steps) commanded.push_back(step.arc.commanded);
+    ++out.chains_checked;
+    const ChainVerdict verdict = req_.confirm_chain(commanded);
+    if (verdict.reliable) {
+      ++confirmed_;
+      out.chain_verified = true;
+      return true;
+    }
+    ++rejected_;
+    for (std::size_t i = 0; i < out.steps.size() && i < verdict.ends.size(); ++i) {
+      GraphArc& arc = graph_.at(out.steps[i].state)[out.steps[i].arc_index];
+      if (!verdict.ends[i]) {
+        next_cell_or_reject(arc);
+        return false;
+      }
+      const std::vector<int> widened = target_union(arc.arc.targets, *verdict.ends[i]);
+      if (widened != arc.arc.targets) {
+        ++widened_;
+        arc.arc.targets = widened;
+        arc.heads = confusable_sets(confusable_, widened);
+        if (!usable(arc)) arc.check = GraphArc::Check::kRejected;
+        return false;
+      }
+    }
+    // Every motion the verifier reports stopped within its arc's targets, yet the chain is unreliable: the
+    // first motion it does not report (or the last one) goes.
+    const PlanStep& step = out.steps[std::min(verdict.ends.size(), out.steps.size() - 1)];
+    GraphArc& arc = graph_.at(step.state)[step.arc_index];
+    next_cell_or_reject(arc);
+    return false;
+  }
+
+  // The arc's next cell with the same simulated targets, or rejection when none is left.
+  void next_cell_or_reject(GraphArc& arc) {
+    if (arc.alternatives.empty()) {
+      arc.check = GraphArc::Check::kRejected;
+      return;
+    }
+    auto& [cell, interior] = arc.alternatives.front();
+    arc.arc.cpositions = std::move(cell);
+    arc.commanded = interior.point;
+    arc.depth = interior.depth;
+    arc.alternatives.erase(arc.alternatives.begin());
   }
 
   // The arc's cell, or the first alternative, that `confirm` accepts (each cell checked once), with the
   // targets widened by its prediction and the heads rebuilt. False when every cell is rejected or the
   // widened heads are too big.
   bool confirm(GraphArc& arc) {
-    while (true) {
+    while (arc.check != GraphArc::Check::kRejected) {
       const auto ends = req_.confirm(current_state_, arc.commanded);
-      if (ends) {
-        ++confirmed_;
-        arc.check = GraphArc::Check::kConfirmed;
-        const std::vector<int> widened = target_union(arc.arc.targets, *ends);
-        if (widened != arc.arc.targets) {
-          ++widened_;
-          arc.arc.targets = widened;
-          arc.heads = confusable_sets(cspace_, widened, req_.eps_s, req_.theta_f);
-        }
-        if (usable(arc)) return true;
-        arc.check = GraphArc::Check::kRejected;
-        return false;
+      if (!ends) {
+        ++rejected_;
+        next_cell_or_reject(arc);
+        continue;
       }
-      ++rejected_;
-      if (arc.alternatives.empty()) {
-        arc.check = GraphArc::Check::kRejected;
-        return false;
+      ++confirmed_;
+      arc.check = GraphArc::Check::kConfirmed;
+      const std::vector<int> widened = target_union(arc.arc.targets, *ends);
+      if (widened != arc.arc.targets) {
+        ++widened_;
+        arc.arc.targets = widened;
+        arc.heads = confusable_sets(confusable_, widened);
       }
-      auto& [cell, interior] = arc.alternatives.front();
-      arc.arc.cpositions = std::move(cell);
-      arc.commanded = interior.point;
-      arc.depth = interior.depth;
-      arc.alternatives.erase(arc.alternatives.begin());
+      if (usable(arc)) return true;
+      arc.check = GraphArc::Check::kRejected;
     }
+    return false;
   }
 
   bool usable(const GraphArc& arc) const {
@@ -206,9 +319,9 @@ class Search {
 
   bool all_succeed(const std::vector<State>& states) {
     choice_.clear();
-    std::set<State> active;
+    memo_.clear();
     return std::all_of(states.begin(), states.end(),
-                       [&](const State& s) { return success(s, req_.max_motions, active); });
+                       [&](const State& s) { return success(s, req_.max_motions); });
   }
 
   // The unexpanded non-goal state nearest the goal among those reachable from the start in fewer than
@@ -218,8 +331,7 @@ class Search {
     double best_distance = std::numeric_limits<double>::infinity();
     std::set<State> seen;
     std::vector<std::pair<State, int>> queue;
-    for (const State& s : confusable_sets(cspace_, req_.start_atoms, req_.eps_s, req_.theta_f))
-      queue.push_back({s, 0});
+    for (const State& s : confusable_sets(confusable_, req_.start_atoms)) queue.push_back({s, 0});
     for (std::size_t i = 0; i < queue.size(); ++i) {
       const auto [s, depth] = queue[i];
       if (!seen.insert(s).second || is_goal(s) || depth >= req_.max_motions) continue;
@@ -238,13 +350,14 @@ class Search {
 
   // The solution tree by motions left: every recorded choice at depth d is an arc whose heads succeeded at
   // d - 1 (and recorded their own choices), so the walk ends in goals after at most max_motions arcs. Keying
-  // by state alone could join choices made under different active sets into a loop.
+  // by state alone could join choices made at different depths into a loop.
   void extract(PlanResult& out) const {
     std::set<std::pair<State, int>> listed;
     std::function<void(const State&, int)> walk = [&](const State& s, int depth) {
       if (is_goal(s) || !listed.insert({s, depth}).second) return;
-      const GraphArc& arc = graph_.at(s)[choice_.at({s, depth})];
-      out.steps.push_back({s, depth, arc});
+      const std::size_t index = choice_.at({s, depth});
+      const GraphArc& arc = graph_.at(s)[index];
+      out.steps.push_back({s, depth, arc, index});
       for (const State& h : arc.heads) walk(h, depth - 1);
     };
     for (const State& s : out.start_states) walk(s, req_.max_motions);
@@ -262,8 +375,10 @@ class Search {
   AtomSimulation& sim_;
   const CSpace& cspace_;
   const PlanRequest& req_;
+  const Confusability confusable_;
   std::map<State, std::vector<GraphArc>> graph_;
   std::map<std::pair<State, int>, std::size_t> choice_;
+  std::map<std::pair<State, int>, bool> memo_;
   std::vector<Vec3> seeds_;
   int confirmed_ = 0, rejected_ = 0, widened_ = 0;
   State current_state_;
@@ -271,8 +386,7 @@ class Search {
 
 }  // namespace
 
-std::vector<State> confusable_sets(const CSpace& cspace, const std::vector<int>& atoms, double eps_s,
-                                   double theta_f) {
+std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& atoms) {
   // Bron–Kerbosch without pivoting: the sets are small (the targets of one arc).
   std::vector<State> out;
   std::function<void(State, std::vector<int>, std::vector<int>)> grow = [&](State r, std::vector<int> p,
@@ -287,9 +401,9 @@ std::vector<State> confusable_sets(const CSpace& cspace, const std::vector<int>&
       p.pop_back();
       std::vector<int> np, nx;
       for (int w : p)
-        if (confusable(cspace, v, w, eps_s, theta_f)) np.push_back(w);
+        if (confusable(v, w)) np.push_back(w);
       for (int w : x)
-        if (confusable(cspace, v, w, eps_s, theta_f)) nx.push_back(w);
+        if (confusable(v, w)) nx.push_back(w);
       State nr = r;
       nr.push_back(v);
       grow(nr, np, nx);

@@ -10,9 +10,20 @@
 #include <vector>
 
 #include "models/cspace.h"
+#include "verifier/planner/confusability.h"
 #include "verifier/planner/simulation.h"
 
 namespace cmt::planner {
+
+using State = std::vector<int>;  // ascending atom ids
+
+// The verdict on a chain of motions verified from the task's start (verifier_check.h): whether it is
+// reliable, and per motion in order the atoms where it may stop, or nothing where it may fail otherwise
+// (ending at the first such motion).
+struct ChainVerdict {
+  bool reliable = false;
+  std::vector<std::optional<std::vector<int>>> ends;
+};
 
 struct PlanRequest {
   std::vector<int> start_atoms;  // the atoms the robot may start in
@@ -28,9 +39,17 @@ struct PlanRequest {
   // is sound, so the union is). Unset: every arc is taken as the simulation gives it.
   std::function<std::optional<std::vector<int>>(const std::vector<int>& state, const Vec3& commanded)>
       confirm;
+  // The lazy check of a whole candidate (the planner's usual one): a decision-free strategy the search
+  // found is accepted only when its chain of commanded positions, verified from the task's start, is
+  // reliable. Otherwise the first motion whose verified stops leave its arc's targets widens that arc (or,
+  // where it may fail otherwise, moves the arc to its next cell or rejects it), and the search goes on.
+  // Each motion is verified from the previous one's actual termination set, so arcs whose sources are
+  // whole atoms (open, as Buckley's states) need not be reliable from the atoms' closures. With the check
+  // set, a candidate that branches on sensed states loses its first branching arc instead (strategies with
+  // tests are not written yet), so the search returns chains only. Unset: no check.
+  std::function<ChainVerdict(const std::vector<Vec3>& commanded)> confirm_chain;
+  int max_chain_checks = 40;  // candidates checked before the search gives up
 };
-
-using State = std::vector<int>;  // ascending atom ids
 
 // An arc of the state graph: a cell of commanded positions from the source state with the atoms they may
 // stop in, the commanded position chosen in it (CPositionSet::interior_point) and its target states (heads).
@@ -39,8 +58,8 @@ struct GraphArc {
   Vec3 commanded;
   double depth = 0;          // of `commanded` inside its piece
   std::vector<State> heads;  // the maximal confusable sets of the targets
-  // Other cells with the same simulated targets, deepest first, tried in turn when `confirm` rejects this
-  // one.
+  // Other cells with the same simulated targets, deepest first, tried in turn when a check (`confirm` or
+  // `confirm_chain`) finds the motion may fail.
   std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> alternatives;
   enum class Check { kUnchecked, kConfirmed, kRejected };
   Check check = Check::kUnchecked;
@@ -52,6 +71,7 @@ struct PlanStep {
   State state;
   int motions_left = 0;
   GraphArc arc;
+  std::size_t arc_index = 0;  // of `arc` among the state's arcs
 };
 
 struct PlanResult {
@@ -61,15 +81,16 @@ struct PlanResult {
   std::vector<PlanStep> steps;  // the solution, every state of it with its chosen arc (start states first)
   int expanded = 0;             // states expanded
   int arcs = 0;                 // arcs built
-  int confirmed = 0, rejected = 0;  // cells the confirm check accepted and rejected
+  int confirmed = 0, rejected = 0;  // cells (confirm) and candidate chains (confirm_chain) accepted, refuted
   int widened = 0;                  // accepted cells whose targets the check widened
+  int chains_checked = 0;           // candidates given to confirm_chain (the last accepted when found)
+  bool chain_verified = false;      // the returned strategy is a chain confirm_chain found reliable
   bool decision_free = false;  // the solution is one chain of motions (each step but the last has one head)
 };
 
 // The maximal subsets of `atoms` whose atoms are pairwise confusable (Def 6.1): the states the robot may
 // find itself in after terminating somewhere in `atoms`.
-std::vector<State> confusable_sets(const CSpace& cspace, const std::vector<int>& atoms, double eps_s,
-                                   double theta_f);
+std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& atoms);
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request);
 

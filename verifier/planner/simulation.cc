@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 
+#include "verifier/atom_cone.h"
 #include "verifier/sensing.h"
 #include "verifier/spring.h"
 #include "verifier/spring_projection.h"
@@ -162,20 +163,6 @@ std::vector<Vec3> extreme_rays(const std::vector<Vec3>& rays) {
 
 }  // namespace
 
-std::vector<Vec3> atom_points(const CSpace& cspace, int atom) {
-  switch (cspace.atom_kind(atom)) {
-    case AtomKind::kFace:
-      return cspace.faces()[cspace.atom_index(atom)].polygon;
-    case AtomKind::kEdge: {
-      const Edge& e = cspace.edges()[cspace.atom_index(atom)];
-      return {e.a, e.b};
-    }
-    case AtomKind::kVertex:
-      return {cspace.vertices()[cspace.atom_index(atom)].point};
-  }
-  return {};
-}
-
 bool atoms_connected(const CSpace& cspace, int a, int b) {
   const auto bounds = [&](int outer, int inner) {
     const auto has = [](const std::vector<int>& v, int x) {
@@ -198,7 +185,7 @@ bool atoms_connected(const CSpace& cspace, int a, int b) {
   return bounds(a, b) || bounds(b, a);
 }
 
-AxisBox planner_domain(const CSpace& cspace) {
+AxisBox atoms_box(const CSpace& cspace) {
   AxisBox box{Vec3::Constant(std::numeric_limits<double>::infinity()),
               Vec3::Constant(-std::numeric_limits<double>::infinity())};
   for (int atom = 0; atom < cspace.atom_count(); ++atom)
@@ -206,6 +193,11 @@ AxisBox planner_domain(const CSpace& cspace) {
       box.min = box.min.cwiseMin(p);
       box.max = box.max.cwiseMax(p);
     }
+  return box;
+}
+
+AxisBox planner_domain(const CSpace& cspace) {
+  AxisBox box = atoms_box(cspace);
   const double grow = (box.max - box.min).norm();
   box.min.array() -= grow;
   box.max.array() += grow;
@@ -215,20 +207,26 @@ AxisBox planner_domain(const CSpace& cspace) {
 AtomSimulation::AtomSimulation(const CSpace& cspace, const Uncertainty& u)
     : cspace_(cspace), u_(u), domain_(planner_domain(cspace)), eps_t_(eps_t(u)), eps_o_(eps_o(u)) {}
 
-const CPositionSet& AtomSimulation::weak_sticking(int atom) {
-  auto it = weak_stick_.find(atom);
-  if (it == weak_stick_.end())
-    it = weak_stick_.emplace(atom, CPositionSet::of(spring_weak_region(cspace_, atom, u_), domain_)).first;
+namespace {
+
+// The set cached under `key`, made on first use.
+template <class Key, class Make>
+const CPositionSet& cached(std::map<Key, CPositionSet>& cache, const Key& key, const Make& make) {
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, make()).first;
   return it->second;
 }
 
+}  // namespace
+
+const CPositionSet& AtomSimulation::weak_sticking(int atom) {
+  return cached(weak_stick_, atom,
+                [&] { return CPositionSet::of(spring_weak_region(cspace_, atom, u_), domain_); });
+}
+
 const CPositionSet& AtomSimulation::strong_sticking(int atom) {
-  auto it = strong_stick_.find(atom);
-  if (it == strong_stick_.end())
-    it =
-        strong_stick_.emplace(atom, CPositionSet::of_union(spring_strong_regions(cspace_, atom, u_), domain_))
-            .first;
-  return it->second;
+  return cached(strong_stick_, atom,
+                [&] { return CPositionSet::of_union(spring_strong_regions(cspace_, atom, u_), domain_); });
 }
 
 const CPositionSet& AtomSimulation::free_rest() {
@@ -341,13 +339,9 @@ CPositionSet AtomSimulation::flight_reach(int from, int to) const {
 }
 
 const CPositionSet& AtomSimulation::weak_reach(int from, int to) {
-  auto it = reach_.find({from, to});
-  if (it == reach_.end())
-    it = reach_
-             .emplace(std::pair{from, to},
-                      atoms_connected(cspace_, from, to) ? connected_reach(from, to) : flight_reach(from, to))
-             .first;
-  return it->second;
+  return cached(reach_, std::pair{from, to}, [&] {
+    return atoms_connected(cspace_, from, to) ? connected_reach(from, to) : flight_reach(from, to);
+  });
 }
 
 void AtomSimulation::traverse(const std::vector<int>& start, const Vec3& p,

@@ -35,6 +35,8 @@ namespace cmt::planner {
 // its diagonal (a spring motion commanded further away behaves like one commanded on the box, only
 // faster). Every arc's cpositions lie in it; completeness is relative to motions commanded inside it.
 AxisBox planner_domain(const CSpace& cspace);
+// The bounding box of the atoms.
+AxisBox atoms_box(const CSpace& cspace);
 
 class AtomSimulation {
  public:
@@ -84,7 +86,5 @@ class AtomSimulation {
 // Whether one atom's closure holds the other (a face and its edges and vertices, an edge and its ends):
 // Buckley's "connected".
 bool atoms_connected(const CSpace& cspace, int a, int b);
-// The corner points of an atom's closure.
-std::vector<Vec3> atom_points(const CSpace& cspace, int atom);
 
 }  // namespace cmt::planner

@@ -3,16 +3,12 @@
 
 #include <algorithm>
 
+#include "models/polygon_distance.h"
+#include "verifier/atom_cone.h"
 #include "verifier/planner/simulation.h"
 
 namespace cmt::planner {
 namespace {
-
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
-}
 
 // Whether p lies in the closed region, within tol.
 bool in_region(const Region& region, const Vec3& p, double tol) {
@@ -21,7 +17,7 @@ bool in_region(const Region& region, const Vec3& p, double tol) {
     case Region::Kind::kPoint:
       return (p - q[0]).norm() <= tol;
     case Region::Kind::kSegment:
-      return segment_distance(p, q[0], q[1]) <= tol;
+      return distance_to_segment(p, q[0], q[1]) <= tol;
     case Region::Kind::kPolygon: {
       Vec3 n = Vec3::Zero();
       for (std::size_t i = 0; i < q.size(); ++i) n += q[i].cross(q[(i + 1) % q.size()]);
