@@ -119,7 +119,8 @@ void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask&
   const Strategy& strategy = planned_task->task.strategy_named(name);
   out["strategy"] = strategy.motions;
   out["strategy_name"] = name;
-  if (plan.chain_verified) {  // the search's check: these commanded positions under this model, from the start
+  // The search's chain check already verified these commanded positions under this model from the start.
+  if (plan.chain_verified) {
     out["verified"] = {{"reliable", true}, {"failure", ""}};
   } else {
     const VerifyResult v = verify_strategy(*planned_task, strategy, rollout_verify_options(*planned_task));
