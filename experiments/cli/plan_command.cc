@@ -171,6 +171,11 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   request.confirm_chain = [&](const std::vector<Vec3>& commanded) {
     return planner::verifier_chain(*task, commanded, verify_options);
   };
+  request.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    const planner::ChainVerdict v = planner::verifier_chain(*task, {commanded}, verify_options);
+    if (v.ends.empty()) return std::nullopt;
+    return v.ends.front();
+  };
   planner::AtomSimulation simulation(c, u);
   const planner::PlanResult plan = planner::plan_sticking(simulation, c, request);
   nlohmann::json out = {{"task", task->task.name},
@@ -183,7 +188,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"rejected", plan.rejected},
                         {"widened", plan.widened},
                         {"decision_free", plan.decision_free},
-                        {"chains_checked", plan.chains_checked}};
+                        {"chains_checked", plan.chains_checked},
+                        {"start_projections", plan.start_projections}};
   nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
   const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
   for (std::size_t i = 0; i < plan.steps.size(); ++i) {
@@ -191,6 +197,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
     motions.push_back({{"name", names[i]},
                        {"commanded", point_json(arc.commanded, task->task.dimension)},
                        {"depth", arc.depth},
+                       {"source", arc.from_start_projection ? "start projection" : "simulation"},
                        {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)}});
     steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
                      {"motion", names[i]},

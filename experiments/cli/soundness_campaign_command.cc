@@ -1,4 +1,4 @@
-// `cmt soundness-campaign --tasks N --seed S [-n ROLLOUTS] [--threads T] [--verifier-budget SEC]
+// `cmt soundness-campaign --tasks N [--first I] --seed S [-n ROLLOUTS] [--threads T] [--verifier-budget SEC]
 // [--no-minimize] [--out DIR] --json`: the random-task soundness campaign
 // (experiments/validation/soundness_campaign.h). Exit 0 when every task was sound, 1 when a soundness bug was
 // found (saved under DIR/bugs/ with its replay command), 2 on bad usage. Rerunning with the same seed and
@@ -22,7 +22,11 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("soundness-campaign",
                                  "Verify random small tasks and check each against extreme-mode rollouts");
-  cmd->add_option("--tasks", o->campaign.tasks, "number of generated tasks")->capture_default_str();
+  cmd->add_option("--tasks", o->campaign.tasks, "end of the task range (tasks FIRST..TASKS-1 are run)")
+      ->capture_default_str();
+  cmd->add_option("--first", o->campaign.first,
+                  "first task index (tasks FIRST..TASKS-1: continues a campaign whose folder is gone)")
+      ->capture_default_str();
   cmd->add_option("--seed", o->campaign.seed, "campaign seed (task i is the same for the same seed)")
       ->capture_default_str();
   cmd->add_option("-n,--rollouts", o->campaign.rollouts, "extreme-mode rollouts per task")
@@ -37,6 +41,8 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
     if (o->campaign.tasks < 0) throw CLI::ValidationError("--tasks", "must be >= 0");
+    if (o->campaign.first < 0 || o->campaign.first > o->campaign.tasks)
+      throw CLI::ValidationError("--first", "must be in [0, --tasks]");
     if (o->campaign.rollouts < 1) throw CLI::ValidationError("--rollouts", "must be >= 1");
     if (!(o->campaign.verifier_budget > 0)) throw CLI::ValidationError("--verifier-budget", "must be > 0");
     if (o->threads < 0) throw CLI::ValidationError("--threads", "must be >= 0");

@@ -355,7 +355,7 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
   const std::map<int, nlohmann::json> done = recorded(results, options);
   std::ofstream log(results, std::ios::app);
   CampaignSummary sum;
-  for (int i = 0; i < options.tasks; ++i) {
+  for (int i = options.first; i < options.tasks; ++i) {
     CampaignRecord rec;
     if (const auto it = done.find(i); it != done.end()) {
       rec = record_from_json(it->second);

@@ -29,6 +29,7 @@ CampaignTask generate_campaign_task(std::uint64_t seed, int index);
 
 struct CampaignOptions {
   int tasks = 30;
+  int first = 0;  // the first task index run (tasks [first, tasks))
   std::uint64_t seed = 1;
   int rollouts = 150;            // extreme-mode rollouts per task
   int threads = 1;               // rollout threads (results are identical for every count)
@@ -56,7 +57,7 @@ struct CampaignSummary {
   std::vector<CampaignRecord> bug_records;
 };
 
-// Runs tasks [0, options.tasks) of campaign options.seed, appending one JSON line per task to
+// Runs tasks [options.first, options.tasks) of campaign options.seed, appending one JSON line per task to
 // options.out/results.jsonl as it finishes; tasks already recorded there for the same seed and rollout count
 // are not rerun (a killed campaign resumes where it stopped). `progress` is called after each task.
 CampaignSummary run_soundness_campaign(const CampaignOptions& options,

@@ -75,6 +75,30 @@ TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
   EXPECT_EQ(again["strategy_name"], "planned_2");
 }
 
+// §6.3.3: the hole from the start segment on the top face. The first motion comes from the start projection
+// (the verifier from the segment itself: the simulation from the whole top face may leave it over its flat
+// edges); the chain is verified, and every rollout reaches the goal.
+TEST(CmtPlan, HoleHasATwoMotionPlanFromTheStartProjectionThatTheRolloutsConfirm) {
+  const Result r = run("plan " + task("hole") + " --check 60 --seed 7 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["found"].get<bool>()) << r.out;
+  ASSERT_EQ(j["motions"].size(), 2u);
+  EXPECT_EQ(j["motions"][0]["source"], "start projection");
+  EXPECT_TRUE(j["motions"][0]["cpositions"].empty());
+  EXPECT_GE(j["start_projections"].get<int>(), 1);
+  EXPECT_EQ(j["steps"][0]["state"], nlohmann::json::array({"f5"}));  // the start face
+  // The first motion leaves the start face (it stops in one sensed state, not in the goal).
+  EXPECT_FALSE(j["steps"][0]["targets"].empty());
+  for (const auto& atom : j["steps"][0]["targets"]) EXPECT_NE(atom, "f5");
+  EXPECT_EQ(j["steps"][0]["heads"].size(), 1u);
+  EXPECT_TRUE(j["decision_free"].get<bool>());
+  EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
+  EXPECT_EQ(j["check"]["rollouts"], 60);
+  EXPECT_EQ(j["check"]["successes"], 60);
+  EXPECT_EQ(j["check"]["outside"], 0);
+}
+
 TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {
   EXPECT_EQ(run("plan " + task("cube") + " --termination force --json").status, 2);
   const Result planar = run("plan " + task("planar_blocks") + " --json");

@@ -176,7 +176,34 @@ TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
   EXPECT_EQ(s.run, 30);
   EXPECT_EQ(s.bugs, 0) << "first bug: " << (s.bug_records.empty() ? "" : s.bug_records.front().replay);
   EXPECT_GE(s.sound, 25);  // at most a few invalid or timed-out draws
+
+  // Resumed: the range's tasks are read back, none is run again.
+  CampaignOptions tail = o;
+  tail.first = 28;
+  const CampaignSummary resumed = run_soundness_campaign(tail);
+  EXPECT_EQ(resumed.run, 2);
+  EXPECT_EQ(resumed.resumed, 2);
+
+  // In a new folder, --first 29 runs task 29 alone, with the same outcome as in the whole campaign.
+  CampaignOptions last = tail;
+  last.first = 29;
+  last.out = o.out.string() + "-last";
+  std::filesystem::remove_all(last.out);
+  std::vector<CampaignRecord> whole, alone;
+  run_soundness_campaign(tail, [&](const CampaignRecord& r) { whole.push_back(r); });
+  const CampaignSummary one =
+      run_soundness_campaign(last, [&](const CampaignRecord& r) { alone.push_back(r); });
+  EXPECT_EQ(one.run, 1);
+  EXPECT_EQ(one.resumed, 0);
+  ASSERT_EQ(alone.size(), 1u);
+  ASSERT_EQ(whole.size(), 2u);
+  EXPECT_EQ(alone[0].index, 29);
+  EXPECT_EQ(alone[0].description, whole[1].description);
+  EXPECT_EQ(alone[0].status, whole[1].status);
+  EXPECT_EQ(alone[0].reliable, whole[1].reliable);
+  EXPECT_EQ(alone[0].outside, whole[1].outside);
   std::filesystem::remove_all(o.out);
+  std::filesystem::remove_all(last.out);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ class Search {
 
   PlanResult run() {
     PlanResult out;
-    out.start_states = confusable_sets(confusable_, req_.start_atoms);
+    out.start_states = start_states();
     if (out.start_states.empty()) {
       out.reason = "the start lies on no atom";
       return out;
@@ -44,20 +44,26 @@ class Search {
                        " candidate strategies refuted by the verifier) was reached";
           break;
         }
-        continue;  // the refuted arc changed: evaluate again
+        add_start_projection_arc(out);  // refutations do not hold the projections back
+        continue;                       // the refuted arc changed: evaluate again
       }
+      // One state expanded and one start projection arc added per round, so the projections (a verifier
+      // call each) are spread over the search rather than paid for before it. A round that expands the start
+      // is evaluated before any projection is paid for.
+      const bool may_project = start_expanded();
       const auto next = pick();
-      if (!next) {
-        out.reason = "no strategy of at most " + std::to_string(req_.max_motions) +
-                     " motions: every reachable state was expanded";
+      const bool expands = next && out.expanded < req_.max_expansions;
+      if (expands) {
+        expand(*next);
+        ++out.expanded;
+      }
+      if (!(may_project && add_start_projection_arc(out)) && !expands) {
+        out.reason =
+            next ? "the expansion limit (" + std::to_string(req_.max_expansions) + " states) was reached"
+                 : "no strategy of at most " + std::to_string(req_.max_motions) +
+                       " motions: every reachable state was expanded";
         break;
       }
-      if (out.expanded >= req_.max_expansions) {
-        out.reason = "the expansion limit (" + std::to_string(req_.max_expansions) + " states) was reached";
-        break;
-      }
-      expand(*next);
-      ++out.expanded;
     }
     out.expanded = static_cast<int>(graph_.size());
     for (const auto& [state, arcs] : graph_) out.arcs += static_cast<int>(arcs.size());
@@ -98,10 +104,95 @@ class Search {
       if (arc && usable(*arc)) out.push_back(std::move(*arc));
     }
     // Best first: the arcs whose targets are nearest the goal are tried first.
-    std::stable_sort(out.begin(), out.end(), [&](const GraphArc& a, const GraphArc& b) {
-      return goal_distance(a.arc.targets) < goal_distance(b.arc.targets);
-    });
-    graph_[state] = std::move(out);
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t i = 0; i < out.size(); ++i) order.push_back({goal_distance(out[i].arc.targets), i});
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<GraphArc>& arcs = graph_[state];
+    for (const auto& entry : order) arcs.push_back(std::move(out[entry.second]));
+  }
+
+  const std::vector<State>& start_states() {
+    if (start_states_.empty()) start_states_ = confusable_sets(confusable_, req_.start_atoms);
+    return start_states_;
+  }
+
+  // The contact seeds (contact_seeds()) behind the goal's faces first, then behind the faces nearest the
+  // goal.
+  const std::vector<Vec3>& projection_seeds() {
+    if (!projection_seeds_.empty()) return projection_seeds_;
+    std::vector<std::pair<double, Vec3>> by_distance;
+    for (const Face& f : cspace_.faces())
+      for (const Vec3& p : contact_seeds(f, req_.eps_s))
+        by_distance.push_back({is_goal({f.id}) ? -1.0 : goal_distance({f.id}), p});
+    std::stable_sort(by_distance.begin(), by_distance.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& entry : by_distance) projection_seeds_.push_back(entry.second);
+    return projection_seeds_;
+  }
+
+  // Whether every start state that is not a goal has its arcs.
+  bool start_expanded() {
+    return std::all_of(start_states().begin(), start_states().end(),
+                       [&](const State& s) { return is_goal(s) || graph_.count(s) > 0; });
+  }
+
+  // PlanRequest::start_targets at the next projection seeds in turn, to the first target set not met before:
+  // its arc is added to every start state that is not a goal. A seed whose target set was met before becomes
+  // the next alternative of that set's arc (tried when the chain check rejects it). Motions that may fail,
+  // stop in free space or have too big heads make no arc. False when the seeds are used up, or before the
+  // start is expanded. Projections go on after the last expansion: an arc whose heads are goals or expanded
+  // states may still complete a plan.
+  bool add_start_projection_arc(PlanResult& out) {
+    if (!req_.start_targets || !start_expanded()) return false;
+    while (next_projection_seed_ < projection_seeds().size()) {
+      const Vec3 p = projection_seeds()[next_projection_seed_++];
+      ++out.start_projections;
+      const std::optional<std::vector<int>> targets = req_.start_targets(p);
+      if (!targets || targets->empty() || targets->back() == sim_.free_atom()) continue;
+      if (!projected_targets_.insert(*targets).second) {
+        if (add_projection_alternative(*targets, p)) return true;
+        continue;
+      }
+      GraphArc arc{
+          Arc{*targets, CPositionSet::none(sim_.domain())}, p, 0, confusable_sets(confusable_, *targets), {}};
+      arc.check = GraphArc::Check::kConfirmed;  // the targets are already the verifier's
+      arc.from_start_projection = true;
+      if (!usable(arc)) continue;
+      // After the arcs at the same or a smaller goal distance: the simulation's arcs are cells of commanded
+      // positions (any of them will do, with a margin), a projection holds at one commanded position.
+      const double distance = goal_distance(arc.arc.targets);
+      for (const State& s : start_states()) {
+        if (is_goal(s)) continue;
+        std::vector<GraphArc>& arcs = graph_.at(s);
+        const auto at = std::find_if(arcs.begin(), arcs.end(), [&](const GraphArc& a) {
+          return goal_distance(a.arc.targets) > distance;
+        });
+        arcs.insert(at, arc);
+      }
+      return true;
+    }
+    return false;
+  }
+
+  // Another commanded position for the start projection's arcs with these targets: their next alternative,
+  // or, for an arc the chain check rejected, its command again (true: the graph changed).
+  bool add_projection_alternative(const std::vector<int>& targets, const Vec3& p) {
+    bool revived = false;
+    for (const State& s : start_states()) {
+      if (is_goal(s)) continue;
+      for (GraphArc& arc : graph_.at(s)) {
+        if (!arc.from_start_projection || arc.arc.targets != targets) continue;
+        if (arc.check == GraphArc::Check::kRejected) {
+          arc.commanded = p;
+          arc.check = GraphArc::Check::kConfirmed;
+          revived = true;
+        } else {
+          arc.alternatives.push_back({CPositionSet::none(sim_.domain()), CPositionSet::InteriorPoint{p, 0}});
+        }
+      }
+    }
+    return revived;
   }
 
   // The arc of one target set: the deepest of the cells of its seeds, the others its alternatives; nothing
@@ -142,8 +233,9 @@ class Search {
 
   // Commanded positions the arrangement is explored at: the centres of a kSeedGrid^3 grid over the domain,
   // a finer one over the atoms' box grown by a quarter of its diagonal (commands near the contacts, where
-  // the arrangement's cells are small: the hole's p1 lies 2 eps_p below the bottom), and the vertex centroids
-  // of the pieces of the goal atoms' sticking regions (where sticking in the goal is possible or sure).
+  // the arrangement's cells are small: the hole's p1 lies 2 eps_p below the bottom), the contact seeds behind
+  // every face (contact_seeds()), and the vertex centroids of the pieces of the goal atoms' sticking regions
+  // (where sticking in the goal is possible or sure).
   const std::vector<Vec3>& seeds() {
     if (!seeds_.empty()) return seeds_;
     const auto add_grid = [&](const AxisBox& box) {
@@ -160,6 +252,8 @@ class Search {
     near.min.array() -= grow;
     near.max.array() += grow;
     add_grid(near);
+    for (const Face& f : cspace_.faces())
+      for (const Vec3& p : contact_seeds(f, req_.eps_s)) seeds_.push_back(p);
     for (int g = 0; g < static_cast<int>(req_.goal_atom.size()); ++g) {
       if (!req_.goal_atom[static_cast<std::size_t>(g)]) continue;
       for (const CPositionSet* set : {&sim_.strong_sticking(g), &sim_.weak_sticking(g)})
@@ -187,11 +281,9 @@ class Search {
   // §6.5.1: a state succeeds if it is a goal or one of its arcs succeeds; an arc succeeds if all its heads
   // do. Depth bounds the motions, so the recursion ends without Buckley's check for states met again while
   // active: a state met again with fewer motions left is a new node of the tree the strategy unrolls to
-  // (extract()), never a loop. Memoized per evaluation by (state, depth). Within one evaluation the graph
-  // changes only by `confirm` checks, and an arc is checked the first time its heads succeed, before any
-  // value relies on it; a check deeper in the recursion (the same arc met again through its own heads) is
-  // caught by heads_succeed, which looks at the arc again after evaluating its heads. Unchecked arcs count
-  // as usable, so a false stays false when checks reject or widen them.
+  // (extract()), never a loop. Memoized per evaluation by (state, depth): the graph does not change
+  // during an evaluation (checks, expansions and projections come between evaluations). Unchecked arcs
+  // count as usable, so a false stays false when checks later reject or widen them.
   bool success(const State& s, int depth) {
     if (is_goal(s)) return true;
     if (depth == 0) return false;
@@ -202,22 +294,12 @@ class Search {
     if (it == graph_.end()) return false;
     bool ok = false;
     for (std::size_t i = 0; i < it->second.size() && !ok; ++i) {
-      GraphArc& arc = it->second[i];  // stays in place: arcs are only added by expand(), between evaluations
+      GraphArc& arc = it->second[i];  // stays in place: arcs are only added between evaluations
       if (arc.check == GraphArc::Check::kRejected) continue;
-      const auto heads_succeed = [&] {
-        const std::vector<State> heads = arc.heads;  // a check deeper in the recursion may change arc.heads
-        const bool all =
-            std::all_of(heads.begin(), heads.end(), [&](const State& h) { return success(h, depth - 1); });
-        if (arc.check == GraphArc::Check::kRejected) return false;  // refuted deeper in the recursion
-        return all &&
-               (arc.heads == heads || std::all_of(arc.heads.begin(), arc.heads.end(),
-                                                  [&](const State& h) { return success(h, depth - 1); }));
-      };
-      ok = heads_succeed();
-      if (ok && req_.confirm && arc.check == GraphArc::Check::kUnchecked) {
-        current_state_ = s;
-        ok = confirm(arc) && heads_succeed();  // the heads may have grown
-      }
+      // A start projection holds from the start region only, not from the start atoms met again later.
+      if (arc.from_start_projection && depth != req_.max_motions) continue;
+      ok = std::all_of(arc.heads.begin(), arc.heads.end(),
+                       [&](const State& h) { return success(h, depth - 1); });
       if (ok) choice_[{s, depth}] = i;
     }
     memo_[{s, depth}] = ok;
@@ -286,31 +368,6 @@ class Search {
     arc.alternatives.erase(arc.alternatives.begin());
   }
 
-  // The arc's cell, or the first alternative, that `confirm` accepts (each cell checked once), with the
-  // targets widened by its prediction and the heads rebuilt. False when every cell is rejected or the
-  // widened heads are too big.
-  bool confirm(GraphArc& arc) {
-    while (arc.check != GraphArc::Check::kRejected) {
-      const auto ends = req_.confirm(current_state_, arc.commanded);
-      if (!ends) {
-        ++rejected_;
-        next_cell_or_reject(arc);
-        continue;
-      }
-      ++confirmed_;
-      arc.check = GraphArc::Check::kConfirmed;
-      const std::vector<int> widened = target_union(arc.arc.targets, *ends);
-      if (widened != arc.arc.targets) {
-        ++widened_;
-        arc.arc.targets = widened;
-        arc.heads = confusable_sets(confusable_, widened);
-      }
-      if (usable(arc)) return true;
-      arc.check = GraphArc::Check::kRejected;
-    }
-    return false;
-  }
-
   bool usable(const GraphArc& arc) const {
     return std::all_of(arc.heads.begin(), arc.heads.end(), [&](const State& h) {
       return is_goal(h) || static_cast<int>(h.size()) <= req_.max_atoms;
@@ -331,7 +388,7 @@ class Search {
     double best_distance = std::numeric_limits<double>::infinity();
     std::set<State> seen;
     std::vector<std::pair<State, int>> queue;
-    for (const State& s : confusable_sets(confusable_, req_.start_atoms)) queue.push_back({s, 0});
+    for (const State& s : start_states_) queue.push_back({s, 0});  // set by run()
     for (std::size_t i = 0; i < queue.size(); ++i) {
       const auto [s, depth] = queue[i];
       if (!seen.insert(s).second || is_goal(s) || depth >= req_.max_motions) continue;
@@ -380,8 +437,11 @@ class Search {
   std::map<std::pair<State, int>, std::size_t> choice_;
   std::map<std::pair<State, int>, bool> memo_;
   std::vector<Vec3> seeds_;
+  std::vector<State> start_states_;
+  std::vector<Vec3> projection_seeds_;
+  std::size_t next_projection_seed_ = 0;
+  std::set<std::vector<int>> projected_targets_;
   int confirmed_ = 0, rejected_ = 0, widened_ = 0;
-  State current_state_;
 };
 
 }  // namespace
@@ -412,6 +472,15 @@ std::vector<State> confusable_sets(const Confusability& confusable, const std::v
   };
   grow({}, atoms, {});
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Vec3> contact_seeds(const Face& face, double unit) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : face.polygon) c += v;
+  c /= static_cast<double>(face.polygon.size());
+  std::vector<Vec3> out;
+  for (double depth : kContactSeedDepths) out.push_back(c - depth * unit * face.normal);
   return out;
 }
 

@@ -32,13 +32,6 @@ struct PlanRequest {
   int max_atoms = 3;         // states of more atoms (that are not goal states) are not expanded
   int max_motions = 3;       // the longest branch of a strategy
   int max_expansions = 200;  // states expanded before the search gives up
-  // An independent prediction of one motion before the search relies on it: the atoms where the spring
-  // motion to `commanded`, started anywhere in the state's atoms, may stop, or nothing when it may fail
-  // otherwise (the verifier, verifier_check.h: it also finds motions that may slide forever, which Buckley's
-  // termination model leaves out). The arc's targets become the union of both predictions (the verifier's
-  // is sound, so the union is). Unset: every arc is taken as the simulation gives it.
-  std::function<std::optional<std::vector<int>>(const std::vector<int>& state, const Vec3& commanded)>
-      confirm;
   // The lazy check of a whole candidate (the planner's usual one): a decision-free strategy the search
   // found is accepted only when its chain of commanded positions, verified from the task's start, is
   // reliable. Otherwise the first motion whose verified stops leave its arc's targets widens that arc (or,
@@ -48,6 +41,15 @@ struct PlanRequest {
   // set, a candidate that branches on sensed states loses its first branching arc instead (strategies with
   // tests are not written yet), so the search returns chains only. Unset: no check.
   std::function<ChainVerdict(const std::vector<Vec3>& commanded)> confirm_chain;
+  // Direct reaching from the start region itself (§6.7.5): the atoms where a motion commanded to p,
+  // started anywhere in the task's start region, may stop, or nothing when it may fail otherwise (the
+  // verifier's forward projection, verifier_check.h). Set, the start states also get one arc per target set
+  // met at the contact seeds (contact_seeds(), behind the goal's faces first, then the faces nearest the
+  // goal), with these targets: the simulation starts from whole atoms, and a start region that touches a
+  // large atom's edge (the hole's start segment reaches the flat edges of the top face) may then leave the
+  // start face wherever it is, while the projection follows the actual path. The seeds are taken in turn, one
+  // new target set per round of the search. Unset: the start states' arcs are the simulation's only.
+  std::function<std::optional<std::vector<int>>(const Vec3& commanded)> start_targets;
   int max_chain_checks = 40;  // candidates checked before the search gives up
 };
 
@@ -58,11 +60,14 @@ struct GraphArc {
   Vec3 commanded;
   double depth = 0;          // of `commanded` inside its piece
   std::vector<State> heads;  // the maximal confusable sets of the targets
-  // Other cells with the same simulated targets, deepest first, tried in turn when a check (`confirm` or
-  // `confirm_chain`) finds the motion may fail.
+  // Other cells with the same simulated targets, deepest first, tried in turn when `confirm_chain` finds
+  // the motion may fail.
   std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> alternatives;
   enum class Check { kUnchecked, kConfirmed, kRejected };
   Check check = Check::kUnchecked;
+  // Targets from PlanRequest::start_targets at `commanded` alone (arc.cpositions is empty: no cell is
+  // claimed), instead of the simulation's cell.
+  bool from_start_projection = false;
 };
 
 // A step of the found strategy: in `state`, with at most `motions_left` motions to go, command `arc`. The
@@ -81,16 +86,24 @@ struct PlanResult {
   std::vector<PlanStep> steps;  // the solution, every state of it with its chosen arc (start states first)
   int expanded = 0;             // states expanded
   int arcs = 0;                 // arcs built
-  int confirmed = 0, rejected = 0;  // cells (confirm) and candidate chains (confirm_chain) accepted, refuted
-  int widened = 0;                  // accepted cells whose targets the check widened
+  int confirmed = 0, rejected = 0;  // candidate chains confirm_chain accepted, refuted
+  int widened = 0;                  // arcs whose targets a refutation widened
   int chains_checked = 0;           // candidates given to confirm_chain (the last accepted when found)
   bool chain_verified = false;      // the returned strategy is a chain confirm_chain found reliable
+  int start_projections = 0;        // calls of start_targets
   bool decision_free = false;  // the solution is one chain of motions (each step but the last has one head)
 };
 
 // The maximal subsets of `atoms` whose atoms are pairwise confusable (Def 6.1): the states the robot may
 // find itself in after terminating somewhere in `atoms`.
 std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& atoms);
+
+// Commanded positions behind a face (Buckley's motions that stick on a face, such as the hole's p2
+// "behind the far wall" and p1 "beneath the hole"): the face's vertex centroid moved against its normal by
+// each of kContactSeedDepths times `unit` (the planner uses eps_s). Seeds, not claims: the simulation or
+// the verifier decides what each motion does.
+constexpr double kContactSeedDepths[] = {2, 5, 10};
+std::vector<Vec3> contact_seeds(const Face& face, double unit);
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request);
 

@@ -1,4 +1,4 @@
-// The verifier's check of one planned motion (verifier_check.h).
+// The verifier's check of a planned chain of motions (verifier_check.h).
 #include "verifier/planner/verifier_check.h"
 
 namespace cmt::planner {
@@ -29,17 +29,6 @@ std::optional<std::vector<int>> step_ends(const VerifyStep& step) {
 }
 
 }  // namespace
-
-std::optional<std::vector<int>> verifier_targets(const LoadedTask& task, const std::vector<int>& state,
-                                                 const Vec3& commanded, const VerifyOptions& options) {
-  const auto [with, names] = with_motions(task, {commanded});
-  ReachedSet start(with.cspace);
-  for (int atom : state) start.add_whole_atom(atom);
-  start.add_boundary_closure();
-  const VerifyResult v = verify_strategy_from(with, Strategy::sequence(names[0], names), start, options);
-  if (v.steps.empty()) return std::nullopt;
-  return step_ends(v.steps.front());
-}
 
 ChainVerdict verifier_chain(const LoadedTask& task, const std::vector<Vec3>& commanded,
                             const VerifyOptions& options) {

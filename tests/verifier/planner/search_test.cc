@@ -33,9 +33,6 @@ PlanRequest request_for(const LoadedTask& task) {
   r.goal_atom = goal_atoms(task);
   r.eps_s = task.task.uncertainty.eps_s;
   r.theta_f = task.task.uncertainty.theta_f;
-  r.confirm = [&task](const State& from, const Vec3& commanded) {
-    return verifier_targets(task, from, commanded, options());
-  };
   return r;
 }
 
@@ -59,6 +56,7 @@ TEST(CubeStartAndGoal, TheTopEdgeStartsAndTheClosedBottomIsTheGoal) {
   EXPECT_EQ(std::count(goal.begin(), goal.end(), true), 9);  // the bottom face, its 4 edges, its 4 vertices
 }
 
+// The simulation alone (no check in the search): its plan is one motion the verifier finds reliable.
 TEST(CubePlan, OneMotionSticksOnTheBottomAndTheVerifierAgrees) {
   const auto& t = *cube();
   AtomSimulation simulation(t.cspace, t.task.uncertainty);
@@ -79,9 +77,37 @@ TEST(CubePlan, OneMotionSticksOnTheBottomAndTheVerifierAgrees) {
 namespace cmt::planner {
 namespace {
 
+// The chain check left to each test's script, with room for many scripted refutations.
+PlanRequest scripted_request_for(const LoadedTask& task) {
+  PlanRequest r = request_for(task);
+  r.max_chain_checks = 1000;
+  return r;
+}
+
+// The cube's bottom face: the first goal atom (faces come first).
+int bottom_face(const LoadedTask& task) {
+  const std::vector<bool> goal = goal_atoms(task);
+  const int bottom = static_cast<int>(std::find(goal.begin(), goal.end(), true) - goal.begin());
+  EXPECT_EQ(task.cspace.atom_kind(bottom), AtomKind::kFace);
+  return bottom;
+}
+
+// Every step whose arc is a start projection is at the root: a start state with every motion still to go.
+void expect_projections_at_root(const PlanResult& plan, const PlanRequest& r) {
+  for (const PlanStep& step : plan.steps) {
+    if (!step.arc.from_start_projection) continue;
+    EXPECT_EQ(step.motions_left, r.max_motions);
+    EXPECT_NE(std::find(plan.start_states.begin(), plan.start_states.end(), step.state),
+              plan.start_states.end());
+  }
+}
+
+// With the verifier's chain check (tests replace it where they script its verdicts).
 PlanRequest chain_request_for(const LoadedTask& task) {
   PlanRequest r = request_for(task);
-  r.confirm = nullptr;
+  r.confirm_chain = [&task](const std::vector<Vec3>& commanded) {
+    return verifier_chain(task, commanded, options());
+  };
   return r;
 }
 
@@ -89,9 +115,6 @@ TEST(CubePlanChainCheck, TheVerifiedChainIsAcceptedAtOnce) {
   const auto& t = *cube();
   AtomSimulation simulation(t.cspace, t.task.uncertainty);
   PlanRequest r = chain_request_for(t);
-  r.confirm_chain = [&t](const std::vector<Vec3>& commanded) {
-    return verifier_chain(t, commanded, options());
-  };
   const PlanResult plan = plan_sticking(simulation, t.cspace, r);
   ASSERT_TRUE(plan.found) << plan.reason;
   EXPECT_EQ(plan.chains_checked, 1);
@@ -159,6 +182,37 @@ TEST(CubePlanChainCheck, WideningByTheVerifierAddsTheTargetsToTheArc) {
         std::includes(step.arc.arc.targets.begin(), step.arc.arc.targets.end(), start.begin(), start.end()));
 }
 
+// A refutation at the last motion of a chain moves that motion's arc to its next cell and leaves the arcs
+// before it as they were. The scripted check refutes every one-motion chain (so a longer plan is needed) and
+// the first longer chain at its last motion.
+TEST(CubePlanChainCheck, ARefutationAtALaterMotionMovesThatMotionsArc) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = chain_request_for(t);
+  r.max_chain_checks = 2000;
+  std::vector<std::vector<Vec3>> longer;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    if (commanded.size() < 2) return ChainVerdict{false, {std::nullopt}};
+    longer.push_back(commanded);
+    ChainVerdict v{longer.size() > 1,
+                   std::vector<std::optional<std::vector<int>>>(commanded.size(), std::vector<int>{})};
+    if (!v.reliable) v.ends.back() = std::nullopt;
+    return v;
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  ASSERT_EQ(longer.size(), 2u);
+  const std::vector<Vec3>& first = longer[0];
+  const std::vector<Vec3>& second = longer[1];
+  ASSERT_EQ(second.size(), first.size());
+  for (std::size_t i = 0; i + 1 < first.size(); ++i) EXPECT_EQ(second[i], first[i]) << i;  // kept
+  EXPECT_NE(second.back(), first.back());  // the last motion's arc moved to its next cell
+  ASSERT_EQ(plan.steps.size(), second.size());
+  for (std::size_t i = 0; i < second.size(); ++i) EXPECT_EQ(plan.steps[i].arc.commanded, second[i]);
+  EXPECT_EQ(plan.steps.back().arc.commanded, plan.steps.back().arc.arc.cpositions.interior_point()->point);
+  EXPECT_EQ(plan.widened, 0);
+}
+
 TEST(CubePlanChainCheck, TheCheckLimitEndsASearchWhoseChainsAllFail) {
   const auto& t = *cube();
   AtomSimulation simulation(t.cspace, t.task.uncertainty);
@@ -170,6 +224,144 @@ TEST(CubePlanChainCheck, TheCheckLimitEndsASearchWhoseChainsAllFail) {
                            << plan.chains_checked << " checks";
   EXPECT_EQ(plan.chains_checked, 3);
   EXPECT_NE(plan.reason.find("check limit"), std::string::npos) << plan.reason;
+}
+
+}  // namespace
+}  // namespace cmt::planner
+
+namespace cmt::planner {
+namespace {
+
+TEST(ContactSeeds, LieBehindTheFaceOnItsCentroidsNormal) {
+  const auto& t = *cube();
+  const double unit = t.task.uncertainty.eps_s;
+  for (const Face& f : t.cspace.faces()) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& v : f.polygon) c += v;
+    c /= static_cast<double>(f.polygon.size());
+    const std::vector<Vec3> seeds = contact_seeds(f, unit);
+    ASSERT_EQ(seeds.size(), std::size(kContactSeedDepths));
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      EXPECT_NEAR(f.offset - f.normal.dot(seeds[i]), kContactSeedDepths[i] * unit, 1e-12);  // behind
+      EXPECT_LT((seeds[i] - c - f.normal * f.normal.dot(seeds[i] - c)).norm(), 1e-12);      // on the centroid
+    }
+  }
+}
+
+// With start_targets, the start state gets arcs whose targets are the projection's from the start region
+// itself, one new target set per round, after the simulation's arcs at the same goal distance. Here the
+// projection stops every motion on the bottom and the check refutes every chain whose first motion is not a
+// projection's: the simulation's arcs from the start move through their cells and are rejected, and the
+// first seed's arc is planned (its chain given to the check as it is: no cell is claimed).
+TEST(CubePlanStartProjection, AProjectedArcIsPlannedWhenTheSimulationsArcsAreRefuted) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  const int bottom = bottom_face(t);
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return std::vector<int>{bottom};
+  };
+  std::vector<std::vector<Vec3>> checked;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    checked.push_back(commanded);
+    if (std::find(asked.begin(), asked.end(), commanded[0]) == asked.end())
+      return ChainVerdict{false, {std::nullopt}};
+    return ChainVerdict{true, {std::vector<int>{bottom}}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  EXPECT_EQ(plan.start_projections, static_cast<int>(asked.size()));
+  EXPECT_GT(plan.chains_checked, 1);  // the simulation's first arc came first
+  ASSERT_EQ(plan.steps.size(), 1u);
+  const GraphArc& arc = plan.steps[0].arc;
+  EXPECT_TRUE(arc.from_start_projection);
+  EXPECT_EQ(arc.commanded, asked[0]);
+  EXPECT_EQ(arc.arc.targets, std::vector<int>{bottom});
+  EXPECT_TRUE(arc.arc.cpositions.pieces().empty());
+  ASSERT_FALSE(checked.empty());
+  EXPECT_EQ(checked.back(), std::vector<Vec3>{asked[0]});
+  expect_projections_at_root(plan, r);
+  // The first seed is behind a goal face: the bottom (the cube's only goal face).
+  const std::vector<Vec3> behind_bottom =
+      contact_seeds(t.cspace.faces()[static_cast<std::size_t>(bottom)], t.task.uncertainty.eps_s);
+  EXPECT_NE(std::find(behind_bottom.begin(), behind_bottom.end(), asked[0]), behind_bottom.end())
+      << asked[0].transpose();
+}
+
+// A projection that may fail (nothing) makes no arc: the next seed's is planned.
+TEST(CubePlanStartProjection, AProjectionThatMayFailMakesNoArc) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  const int bottom = bottom_face(t);
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    if (asked.size() == 1) return std::nullopt;
+    return std::vector<int>{bottom};
+  };
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    if (asked.size() < 2 || commanded[0] != asked[1]) return ChainVerdict{false, {std::nullopt}};
+    return ChainVerdict{true, {std::vector<int>{bottom}}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  ASSERT_GE(asked.size(), 2u);
+  ASSERT_EQ(plan.steps.size(), 1u);
+  EXPECT_TRUE(plan.steps[0].arc.from_start_projection);
+  EXPECT_EQ(plan.steps[0].arc.commanded, asked[1]);
+  expect_projections_at_root(plan, r);
+}
+
+// A projected arc the chain check refutes takes the next seed with the same targets as its command.
+TEST(CubePlanStartProjection, ARefutedProjectionTakesTheNextSeedWithItsTargets) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  const int bottom = bottom_face(t);
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return std::vector<int>{bottom};
+  };
+  std::vector<Vec3> projected_checked;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    if (std::find(asked.begin(), asked.end(), commanded[0]) == asked.end())
+      return ChainVerdict{false, {std::nullopt}};  // the simulation's arcs
+    projected_checked.push_back(commanded[0]);
+    if (commanded[0] == asked[0]) return ChainVerdict{false, {std::nullopt}};
+    return ChainVerdict{true, {std::vector<int>{bottom}}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  ASSERT_GE(asked.size(), 2u);
+  EXPECT_EQ(projected_checked, (std::vector<Vec3>{asked[0], asked[1]}));
+  ASSERT_EQ(plan.steps.size(), 1u);
+  EXPECT_TRUE(plan.steps[0].arc.from_start_projection);
+  EXPECT_EQ(plan.steps[0].arc.commanded, asked[1]);
+  EXPECT_EQ(plan.steps[0].arc.arc.targets, std::vector<int>{bottom});
+  expect_projections_at_root(plan, r);
+}
+
+// No projection is paid for when the simulation's arcs from the start are accepted at once.
+TEST(CubePlanStartProjection, NoneIsMadeWhenTheFirstCandidateHolds) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = chain_request_for(t);
+  r.confirm_chain = [](const std::vector<Vec3>&) { return ChainVerdict{true, {std::vector<int>{}}}; };
+  int asked = 0;
+  r.start_targets = [&](const Vec3&) -> std::optional<std::vector<int>> {
+    ++asked;
+    return std::nullopt;
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  EXPECT_EQ(asked, 0);
+  EXPECT_EQ(plan.start_projections, 0);
+  ASSERT_EQ(plan.steps.size(), 1u);
+  EXPECT_FALSE(plan.steps[0].arc.from_start_projection);
 }
 
 }  // namespace
