@@ -48,8 +48,7 @@ const Fixture& fixture() {
     x.scene = cmt::RolloutScene::build(x.task, sim);
     x.teach = x.task->task.find_strategy("teach");
     // The impedance form's verifier model, as cmt falsify and cmt validate use it.
-    const cmt::VerifierModel model =
-        cmt::make_verifier_model(text.str(), x.task, cmt::ControllerForm::kImpedance);
+    const cmt::VerifierModel model = cmt::make_verifier_model(x.task, cmt::ControllerForm::kImpedance);
     x.prediction = cmt::verify_strategy(*model.task, *x.teach, model.verify_options());
     const cmt::ErrorVectorLayout layout(x.task->task, *x.teach, cmt::default_error_shape(false, 0.2));
     cmt::Rng rng = cmt::rollout_stream(1, 0);

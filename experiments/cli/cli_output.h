@@ -22,7 +22,7 @@ void print_json(const nlohmann::json& object);
 int report_bad_input(const std::string& message, bool json, const std::string& file = "",
                      const std::string& key = "", const std::string& reason = "", TextLocation where = {});
 
-// A task file's text (kept when a command re-loads it, e.g. with a widened theta_v, verifier_model.h); a
+// A task file's text (kept when a command writes it back, e.g. with planned motions); a
 // missing file is bad input naming it (like load_task).
 std::string read_task_text(const std::string& path);
 

@@ -71,14 +71,13 @@ void add_falsify_command(CLI::App& app, CommandState& state) {
       ->capture_default_str();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
-    const std::string text = read_task_text(o->task);
-    const auto task = load_task_from_string(text, o->task);
+    const auto task = load_task_from_string(read_task_text(o->task), o->task);
     FalsifyOptions options = o->falsify;
     options.threads =
         o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     options.mode = *parse_sample_mode(o->mode);
     options.form = *parse_controller_form(o->controller);
-    const FalsifyResult r = run_falsify(task, text, o->strategy, options);
+    const FalsifyResult r = run_falsify(task, o->strategy, options);
     if (state.json)
       std::cout << json_text(falsify_json(*task, r), 2) << "\n";
     else

@@ -131,8 +131,7 @@ void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask&
     options.n = cli.check;
     options.seed = cli.seed;
     options.threads = cli.threads;
-    const nlohmann::json r =
-        validation_json(*planned_task, run_validation(planned_task, planned, name, options));
+    const nlohmann::json r = validation_json(*planned_task, run_validation(planned_task, name, options));
     out["check"] = {{"rollouts", r["rollouts"]},
                     {"successes", r["successes"]},
                     {"outside", r["outside"]},

@@ -81,13 +81,12 @@ ValidateOutput render(const LoadedTask& task, const ValidationResult& r, bool js
 // The validation under the verifier's time limit (validate_with_verifier_budget), rendered where it ran. A
 // TaskError there comes back whole (file, key, reason, place), so bad input still names its key.
 ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask>& task,
-                                          const std::string& text, const std::string& strategy,
-                                          const ValidateOptions& options, double time_limit, bool json,
-                                          bool with_ends) {
+                                          const std::string& strategy, const ValidateOptions& options,
+                                          double time_limit, bool json, bool with_ends) {
   const nlohmann::json payload =
       nlohmann::json::parse(validate_with_verifier_budget(time_limit, options, [&](const ValidateOptions& o) {
         try {
-          const ValidateOutput v = render(*task, run_validation(task, text, strategy, o), json, with_ends);
+          const ValidateOutput v = render(*task, run_validation(task, strategy, o), json, with_ends);
           return json_text({{"out", v.out}, {"err", v.err}, {"exit_status", v.exit_status}});
         } catch (const TaskError& e) {
           return json_text({{"task_error",
@@ -168,9 +167,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
                                  "must be >= 0, got " + std::to_string(o->sticking_trials));
     if (o->budget < 0)
       throw CLI::ValidationError("--search-budget", "must be >= 0, got " + std::to_string(o->budget));
-    // The text is kept: the admittance form re-loads it with a widened theta_v (verifier_model.h).
-    const std::string text = read_task_text(o->task);
-    const auto task = load_task_from_string(text, o->task);
+    const auto task = load_task_from_string(read_task_text(o->task), o->task);
     ValidateOptions options;
     options.n = o->n;
     options.seed = o->seed;
@@ -180,7 +177,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     options.sticking_trials = o->sticking_trials;
     options.counterexample_budget = o->budget;
     const ValidateOutput v =
-        validate_within_time_limit(task, text, o->strategy, options, o->time_limit, state.json, o->ends);
+        validate_within_time_limit(task, o->strategy, options, o->time_limit, state.json, o->ends);
     std::cerr << v.err;
     std::cout << v.out;
     state.exit_status = v.exit_status;

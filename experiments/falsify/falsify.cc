@@ -359,10 +359,10 @@ FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy
   return falsify_with(std::move(task), strategy, prediction, options, &baseline);
 }
 
-FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
-                          const std::string& strategy_name, const FalsifyOptions& options) {
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& strategy_name,
+                          const FalsifyOptions& options) {
   const Strategy& strategy = task->task.strategy_named(strategy_name);
-  const VerifierModel model = make_verifier_model(task_yaml, task, options.form);
+  const VerifierModel model = make_verifier_model(task, options.form);
   const auto start = std::chrono::steady_clock::now();
   const VerifyResult prediction =
       verify_strategy(*model.task, *model.task->task.find_strategy(strategy_name), model.verify_options());

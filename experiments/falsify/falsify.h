@@ -81,10 +81,9 @@ struct FalsifyResult {
   double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0;
 };
 
-// `task_yaml` is the text `task` was loaded from (the verifier runs on its widened model for the controller
-// form, as in run_validation).
-FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
-                          const std::string& strategy, const FalsifyOptions& options);
+// The verifier runs on the task's model for the controller form (make_verifier_model, as in run_validation).
+FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const std::string& strategy,
+                          const FalsifyOptions& options);
 // The same against a given prediction (tests: a deliberately shrunk one).
 FalsifyResult run_falsify(std::shared_ptr<const LoadedTask> task, const Strategy& strategy,
                           const VerifyResult& prediction, const FalsifyOptions& options);

@@ -112,7 +112,7 @@ UnitExecutor make_validation_executor() {
     // The validation, then (with a falsify budget and a prediction) the adversarial search against that
     // prediction with the validation's rollouts as its baseline: both in the child under a verifier budget.
     const auto validate = [&](const ValidateOptions& o) {
-      const ValidationResult v = run_validation(cache->task, unit.task_yaml, unit.strategy, o);
+      const ValidationResult v = run_validation(cache->task, unit.strategy, o);
       UnitRecord record = unit_record(*cache->task, v);
       if (unit.falsify_budget + unit.falsify_coverage_budget > 0 && o.verifier_timed_out_after <= 0)
         record.falsify = falsify_record(cache->task, unit, v, threads);

@@ -14,7 +14,7 @@ TaskFileCheck check_task_file(const std::filesystem::path& file, const std::stri
   out.close();
   if (!out) throw std::runtime_error("cannot write " + file.string() + " (" + dir_option + ")");
   options.counterexample_budget = 0;
-  const ValidationResult r = run_validation(load_task(file), text, strategy, options);
+  const ValidationResult r = run_validation(load_task(file), strategy, options);
   TaskFileCheck c;
   c.rollouts = static_cast<int>(r.rollouts.size());
   c.successes = r.successes;

@@ -222,7 +222,7 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
         o.mode = SampleMode::kExtreme;
         o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
         o.after_verify = done;
-        const ValidationResult r = run_validation(task, yaml, "s", o);
+        const ValidationResult r = run_validation(task, "s", o);
         nlohmann::json j;
         j["reliable"] = r.prediction.reliable;
         j["failure"] = r.prediction.failure;

@@ -42,8 +42,8 @@ std::string replay_command(const LoadedTask& task, const std::string& strategy, 
   return os.str();
 }
 
-ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
-                                const std::string& strategy_name, const ValidateOptions& options) {
+ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& strategy_name,
+                                const ValidateOptions& options) {
   const Strategy* strategy = &task->task.strategy_named(strategy_name);
   if (options.n <= 0) throw std::invalid_argument("run_validation: n must be > 0");
   if (options.form == ControllerForm::kPosition)
@@ -59,7 +59,7 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
   r.strategy = strategy->name;
   r.options = options;
   r.options.threads = std::max(1, options.threads);
-  r.verifier = make_verifier_model(task_yaml, task, options.form);
+  r.verifier = make_verifier_model(task, options.form);
 
   auto start = std::chrono::steady_clock::now();
   const bool timed_out = options.verifier_timed_out_after > 0;

@@ -174,12 +174,11 @@ bool contradicts_verifier(const ValidationResult& result);
 std::string replay_command(const LoadedTask& task, const std::string& strategy, std::uint64_t seed, int index,
                            SampleMode mode, ControllerForm form);
 
-// Runs the verifier and the rollouts (and the search and the sticking table). `task_yaml` is the text `task`
-// was loaded from: the verifier runs on make_verifier_model(task_yaml, task, options.form).task (theta_v
-// widened for the admittance form), the rollouts on `task`. Throws TaskError for an unknown strategy or a
-// widened theta_v the task format refuses.
-ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& task_yaml,
-                                const std::string& strategy, const ValidateOptions& options);
+// Runs the verifier and the rollouts (and the search and the sticking table). The verifier runs on
+// make_verifier_model(task, options.form).task (theta_v widened for the admittance form), the rollouts on
+// `task`. Throws TaskError for an unknown strategy or a widened theta_v the task format refuses.
+ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& strategy,
+                                const ValidateOptions& options);
 
 // Runs `work` (a validation with the options it is given, and whatever the caller makes of it, as text) in a
 // forked child whose verifier phase has `budget` seconds (experiments/common/verifier_budget.h; the child's

@@ -4,9 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "experiments/common/task_overrides.h"
 #include "models/task_error.h"
-#include "models/task_loader.h"
 #include "sim/rollout.h"
 
 namespace cmt {
@@ -33,8 +31,7 @@ VerifyOptions rollout_verify_options(const LoadedTask& task) {
   return {SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(task), rollout_servo_coast(task)};
 }
 
-VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
-                                  ControllerForm form) {
+VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, ControllerForm form) {
   VerifierModel m;
   m.task = task;
   m.contact_lift = rollout_contact_lift(*task);
@@ -71,20 +68,17 @@ VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<
       << "; experiments/validation/verifier_model.h), so the verifier uses theta_v + that = " << m.theta_v;
   m.reason = why.str();
 
-  const Task& base = task->task;
-  const ParamSet widen = {ParamValue{
-      ParamTarget{ParamTarget::Kind::kUncertainty, "theta_v"}, {m.theta_v}, "uncertainty.theta_v"}};
-  const std::string widened = apply_overrides(task_yaml, base, widen);
-  try {
-    parse_task_string(widened, base.source_file);
-  } catch (const TaskError& e) {
-    throw TaskError(base.source_file, "uncertainty.theta_v",
+  if (!(m.theta_v < kMaxThetaV))
+    throw TaskError(task->task.source_file, "uncertainty.theta_v",
                     "the admittance form needs the verifier to use theta_v + " +
                         std::to_string(m.extra_angle) +
                         " (theta_f error fed back) = " + std::to_string(m.theta_v) +
-                        ", which the task format refuses: " + e.reason() + "; use --controller impedance");
-  }
-  m.task = load_task_from_string(widened, base.source_file);
+                        ", which the task format refuses: must be < pi/2 (1.5708) radians; use --controller "
+                        "impedance");
+  // The C-space does not depend on the uncertainty: the widened task shares the geometry, copied.
+  auto widened = std::make_shared<LoadedTask>(*task);
+  widened->task.uncertainty.theta_v = m.theta_v;
+  m.task = std::move(widened);
   return m;
 }
 

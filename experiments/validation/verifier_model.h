@@ -97,12 +97,10 @@ struct VerifierModel {
   }
 };
 
-// `task_yaml` is the text `task` was loaded from. For the admittance form with theta_f > 0 the text is
-// re-loaded with uncertainty.theta_v = theta_v + beta (experiments/common/task_overrides.h, so every check of
-// the task format applies); throws TaskError(file, "uncertainty.theta_v", reason) when the widened angle
-// leaves the task format's range (< pi/2).
-VerifierModel make_verifier_model(const std::string& task_yaml, std::shared_ptr<const LoadedTask> task,
-                                  ControllerForm form);
+// For the admittance form with theta_f > 0, `task` copied with uncertainty.theta_v = theta_v + beta; throws
+// TaskError(file, "uncertainty.theta_v", reason) when the widened angle leaves the task format's range
+// (< pi/2, kMaxThetaV).
+VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, ControllerForm form);
 
 // {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, contact_lift,
 // servo_coast, reason}.

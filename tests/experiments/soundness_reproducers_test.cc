@@ -20,17 +20,14 @@ namespace {
 ValidationResult validate_file(const std::string& name, const std::string& strategy, int n,
                                std::uint64_t seed = 3) {
   const std::filesystem::path path = std::filesystem::path(CMT_SOURCE_DIR) / "models/tasks/soundness" / name;
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto task = load_task_from_string(text.str(), path.string());
+  const auto task = load_task(path);
   ValidateOptions o;
   o.n = n;
   o.seed = seed;
   o.threads = 2;
   o.mode = SampleMode::kExtreme;
   o.counterexample_budget = 0;
-  return run_validation(task, text.str(), strategy, o);
+  return run_validation(task, strategy, o);
 }
 
 void expect_sound(const ValidationResult& r) {

@@ -40,17 +40,18 @@ TEST(VerifierModel, ExtraAngleOfTheSensedForceFeedback) {
   EXPECT_NEAR(sensed_force_extra_angle(0.3, 1.0), 0.15, 1e-15);
 }
 
-TEST(VerifierModel, AdmittanceWidensThetaVInTheReloadedTask) {
+TEST(VerifierModel, AdmittanceWidensThetaVInACopyOfTheTask) {
   const std::string yaml = room_yaml(0.1, 0.1);
   const auto task = load_task_from_string(yaml, "room.yaml");
-  const VerifierModel m = make_verifier_model(yaml, task, ControllerForm::kAdmittance);
+  const VerifierModel m = make_verifier_model(task, ControllerForm::kAdmittance);
   // .1 + asin((2/3) sin .05) = .1 + asin(.0333194) = .1 + .0333256.
   EXPECT_NEAR(m.extra_angle, 0.0333256, 1e-7);
   EXPECT_DOUBLE_EQ(m.theta_v, 0.1 + m.extra_angle);
   EXPECT_EQ(m.task_theta_v, 0.1);
   EXPECT_EQ(m.theta_f, 0.1);
   ASSERT_NE(m.task, task);
-  EXPECT_EQ(m.task->task.uncertainty.theta_v, m.theta_v);  // exactly: written as a round-trip number
+  EXPECT_EQ(m.task->task.uncertainty.theta_v, m.theta_v);
+  EXPECT_EQ(task->task.uncertainty.theta_v, 0.1);  // the loaded task is unchanged
   EXPECT_EQ(m.task->task.uncertainty.theta_f, 0.1);
   EXPECT_EQ(m.task->task.source_file, "room.yaml");
   EXPECT_EQ(m.task->cspace.faces().size(), task->cspace.faces().size());
@@ -64,14 +65,14 @@ TEST(VerifierModel, ImpedanceAndExactForceKeepTheTasksThetaV) {
   const std::string yaml = room_yaml(0.1, 0.1);
   const auto task = load_task_from_string(yaml, "room.yaml");
   for (const ControllerForm form : {ControllerForm::kImpedance, ControllerForm::kPosition}) {
-    const VerifierModel m = make_verifier_model(yaml, task, form);
+    const VerifierModel m = make_verifier_model(task, form);
     EXPECT_EQ(m.task, task);
     EXPECT_EQ(m.theta_v, 0.1);
     EXPECT_EQ(m.extra_angle, 0);
   }
   const std::string exact = room_yaml(0.1, 0);
   const VerifierModel m =
-      make_verifier_model(exact, load_task_from_string(exact, "room.yaml"), ControllerForm::kAdmittance);
+      make_verifier_model(load_task_from_string(exact, "room.yaml"), ControllerForm::kAdmittance);
   EXPECT_EQ(m.theta_v, 0.1);
 }
 
@@ -85,7 +86,7 @@ TEST(VerifierModel, TheFormPicksTheSpringModel) {
                                                           {ControllerForm::kAdmittance, "velocity"},
                                                           {ControllerForm::kPosition, "via-point"}};
   for (const auto& [form, name] : cases) {
-    const VerifierModel m = make_verifier_model(yaml, task, form);
+    const VerifierModel m = make_verifier_model(task, form);
     EXPECT_EQ(spring_model_name(m.spring_model), std::string(name));
     EXPECT_EQ(verifier_model_json(m)["spring_model"], name);
     // Every form's rollouts stop by the same 1 % rule, which the verifier must take in (its options carry
@@ -100,7 +101,7 @@ TEST(VerifierModel, AWidenedAngleBeyondTheFormatIsBadInputNamingTheKey) {
   // 1.55 + asin((2/3) sin .05) = 1.583 >= pi/2.
   const std::string yaml = room_yaml(1.55, 0.1);
   try {
-    make_verifier_model(yaml, load_task_from_string(yaml, "room.yaml"), ControllerForm::kAdmittance);
+    make_verifier_model(load_task_from_string(yaml, "room.yaml"), ControllerForm::kAdmittance);
     ADD_FAILURE() << "no error";
   } catch (const TaskError& e) {
     EXPECT_EQ(e.file(), "room.yaml");
