@@ -141,7 +141,7 @@ double ReachedSet::Impl::add_interval(int ei, double t0, double t1, std::vector<
       merged.push_back(iv);
   }
   list = std::move(merged);
-  if (added) *added = gaps;
+  if (added) *added = std::move(gaps);
   return fresh;
 }
 

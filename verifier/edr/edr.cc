@@ -175,16 +175,19 @@ std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& sli
 // confusable pairs are listed.
 void check_distinguishable(const Task& task, const EdrOptions& options, EdrResult* out) {
   std::vector<SlicePiece> success, failure;
+  std::vector<std::vector<ReachedPiece>> success_pieces(out->slices.size());  // each slice's, made once
   double scale = 0;
   for (std::size_t i = 0; i < out->slices.size(); ++i) {
     const EdrSlice& s = out->slices[i];
     scale = std::max(scale, s.task->cspace.scale());
     if (!s.success) continue;
-    for (ReachedPiece& p : s.success->pieces()) success.push_back({&s.task->cspace, static_cast<int>(i), p});
+    success_pieces[i] = s.success->pieces();
+    for (const ReachedPiece& p : success_pieces[i])
+      success.push_back({&s.task->cspace, static_cast<int>(i), p});
     for (const ReachedPiece& p : s.failure_pieces)
       failure.push_back({&s.task->cspace, static_cast<int>(i), p});
   }
-  out->swept_success = swept(task, out->slices, [&](int i) { return out->slices[i].success->pieces(); });
+  out->swept_success = swept(task, out->slices, [&](int i) { return success_pieces[i]; });
   out->swept_failure = swept(task, out->slices, [&](int i) { return out->slices[i].failure_pieces; });
   success.insert(success.end(), out->swept_success.begin(), out->swept_success.end());
   failure.insert(failure.end(), out->swept_failure.begin(), out->swept_failure.end());
