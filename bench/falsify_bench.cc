@@ -12,8 +12,6 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "experiments/falsify/falsify.h"
 #include "experiments/falsify/robustness.h"
@@ -39,10 +37,7 @@ const Fixture& fixture() {
     Fixture x;
     const std::filesystem::path file =
         std::filesystem::path(CMT_SOURCE_DIR) / "models" / "tasks" / "hole.yaml";
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    x.task = cmt::load_task_from_string(text.str(), file.string());
+    x.task = cmt::load_task(file);
     cmt::SimOptions sim;
     sim.form = cmt::ControllerForm::kImpedance;
     x.scene = cmt::RolloutScene::build(x.task, sim);

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,13 +20,10 @@ double meters_per_unit(LengthUnit unit);
 const char* unit_name(LengthUnit unit);
 
 // Buckley §2.1 error bounds (L640-652). Lengths in task units, angles in radians.
-// theta_v must stay below this (pi/2): a velocity error of pi/2 or more may stop any motion.
-inline constexpr double kMaxThetaV = std::numbers::pi / 2;
-
 struct Uncertainty {
   double eps_s = 0;    // position-sensing error: radius of the sensing ball
   double eps_p = 0;    // positioning error in free space
-  double theta_v = 0;  // half-angle between commanded and actual velocity, [0, kMaxThetaV)
+  double theta_v = 0;  // half-angle between commanded and actual velocity, [0, pi/2) (task_ranges.h)
   double theta_f = 0;  // force-direction sensing error
   double step = 0;     // spring interpolation step (defaults to eps_p)
 };

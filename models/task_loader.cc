@@ -221,8 +221,7 @@ class Parser {
     u.eps_s = nonnegative(n.at("eps_s"), "the position-sensing error bound");
     u.eps_p = nonnegative(n.at("eps_p"), "the positioning error bound");
     u.theta_v = nonnegative(n.at("theta_v"), "the velocity error angle");
-    if (u.theta_v >= kMaxThetaV)
-      n.at("theta_v").fail("must be < pi/2 (1.5708) radians, got " + format(u.theta_v));
+    if (u.theta_v >= kMaxThetaV) n.at("theta_v").fail(theta_v_range_reason(u.theta_v));
     u.theta_f = nonnegative(n.at("theta_f"), "the force-sensing error angle");
     if (u.theta_f >= std::numbers::pi) n.at("theta_f").fail("must be < pi radians, got " + format(u.theta_f));
     u.step = 0;  // absent: apply_scene_defaults (models/task_ranges.h) sets it from eps_p and the scene

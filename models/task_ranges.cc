@@ -174,6 +174,10 @@ void apply_scene_defaults(Task& task) {
   u.step = u.eps_p >= kMinStepRelative * scene ? u.eps_p : kDefaultStepRelative * scene;
 }
 
+std::string theta_v_range_reason(double theta_v) {
+  return "must be < pi/2 (1.5708) radians, got " + format(theta_v);
+}
+
 double task_scene_size(const Task& task) {
   const SceneBox box = scene_box(task);
   return box.empty() ? 0 : (box.max - box.min).norm();

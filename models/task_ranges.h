@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstddef>
+#include <numbers>
+#include <string>
 
 #include "models/task.h"
 
@@ -26,6 +28,10 @@ inline constexpr double kMaxErrorRelative = 1.0;
 inline constexpr double kMinStepRelative = 1e-4;
 // A spring's commanded position lies within this many scene sizes of the scene box (farther, use a damper).
 inline constexpr double kMaxSpringReachRelative = 1e3;
+// theta_v stays below this (pi/2): a velocity error of pi/2 or more may stop any motion.
+inline constexpr double kMaxThetaV = std::numbers::pi / 2;
+// The reason a theta_v out of range is refused (the loader's, and a widened one's in the verifier model).
+std::string theta_v_range_reason(double theta_v);
 // Coulomb coefficients up to this (a friction cone of 89.4 degrees).
 inline constexpr double kMaxFriction = 100;
 // A direction (damper, force cone) has at least this length before it is normalized.

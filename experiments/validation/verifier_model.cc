@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/task_error.h"
+#include "models/task_ranges.h"
 #include "sim/rollout.h"
 
 namespace cmt {
@@ -68,14 +69,13 @@ VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, Contro
       << "; experiments/validation/verifier_model.h), so the verifier uses theta_v + that = " << m.theta_v;
   m.reason = why.str();
 
-  if (!(m.theta_v < kMaxThetaV))
-    throw TaskError(task->task.source_file, "uncertainty.theta_v",
-                    "the admittance form needs the verifier to use theta_v + " +
-                        std::to_string(m.extra_angle) +
-                        " (theta_f error fed back) = " + std::to_string(m.theta_v) +
-                        ", which the task format refuses: must be < pi/2 (1.5708) radians; use --controller "
-                        "impedance");
-  // The C-space does not depend on the uncertainty: the widened task shares the geometry, copied.
+  if (m.theta_v >= kMaxThetaV)
+    throw TaskError(
+        task->task.source_file, "uncertainty.theta_v",
+        "the admittance form needs the verifier to use theta_v + " + std::to_string(m.extra_angle) +
+            " (theta_f error fed back) = " + std::to_string(m.theta_v) + ", which the task format refuses: " +
+            theta_v_range_reason(m.theta_v) + "; use --controller impedance");
+  // The C-space does not depend on the uncertainty: the copy keeps it as built.
   auto widened = std::make_shared<LoadedTask>(*task);
   widened->task.uncertainty.theta_v = m.theta_v;
   m.task = std::move(widened);

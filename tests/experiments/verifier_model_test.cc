@@ -107,6 +107,7 @@ TEST(VerifierModel, AWidenedAngleBeyondTheFormatIsBadInputNamingTheKey) {
     EXPECT_EQ(e.file(), "room.yaml");
     EXPECT_EQ(e.key(), "uncertainty.theta_v");
     EXPECT_NE(e.reason().find("--controller impedance"), std::string::npos) << e.what();
+    EXPECT_NE(e.reason().find("must be < pi/2 (1.5708) radians, got 1.58"), std::string::npos) << e.what();
   }
 }
 

@@ -153,7 +153,7 @@ std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& sli
   for (const auto& [i, j] : adjacent_slices(task, slices)) {
     if (!slices[i].termination || !slices[j].termination) continue;
     const double tol = kGoalRelativeTolerance * slices[i].task->cspace.scale();
-    const std::vector<ReachedPiece> first = pieces(i), second = pieces(j);
+    const std::vector<ReachedPiece>&first = pieces(i), &second = pieces(j);
     for (const ReachedPiece& a : first)
       for (const ReachedPiece& b : second) {
         if (a.atom != b.atom || a.kind != b.kind) continue;
@@ -187,8 +187,11 @@ void check_distinguishable(const Task& task, const EdrOptions& options, EdrResul
     for (const ReachedPiece& p : s.failure_pieces)
       failure.push_back({&s.task->cspace, static_cast<int>(i), p});
   }
-  out->swept_success = swept(task, out->slices, [&](int i) { return success_pieces[i]; });
-  out->swept_failure = swept(task, out->slices, [&](int i) { return out->slices[i].failure_pieces; });
+  out->swept_success =
+      swept(task, out->slices, [&](int i) -> const std::vector<ReachedPiece>& { return success_pieces[i]; });
+  out->swept_failure = swept(task, out->slices, [&](int i) -> const std::vector<ReachedPiece>& {
+    return out->slices[i].failure_pieces;
+  });
   success.insert(success.end(), out->swept_success.begin(), out->swept_success.end());
   failure.insert(failure.end(), out->swept_failure.begin(), out->swept_failure.end());
   const std::vector<Confusion> pairs = confusable_pairs(
