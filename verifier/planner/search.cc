@@ -156,7 +156,6 @@ class Search {
       }
       GraphArc arc{
           Arc{*targets, CPositionSet::none(sim_.domain())}, p, 0, confusable_sets(confusable_, *targets), {}};
-      arc.check = GraphArc::Check::kConfirmed;  // the targets are already the verifier's
       arc.from_start_projection = true;
       if (!usable(arc)) continue;
       // After the arcs at the same or a smaller goal distance: the simulation's arcs are cells of commanded
@@ -183,9 +182,9 @@ class Search {
       if (is_goal(s)) continue;
       for (GraphArc& arc : graph_.at(s)) {
         if (!arc.from_start_projection || arc.arc.targets != targets) continue;
-        if (arc.check == GraphArc::Check::kRejected) {
+        if (arc.rejected) {
           arc.commanded = p;
-          arc.check = GraphArc::Check::kConfirmed;
+          arc.rejected = false;
           revived = true;
         } else {
           arc.alternatives.push_back({CPositionSet::none(sim_.domain()), CPositionSet::InteriorPoint{p, 0}});
@@ -282,8 +281,8 @@ class Search {
   // do. Depth bounds the motions, so the recursion ends without Buckley's check for states met again while
   // active: a state met again with fewer motions left is a new node of the tree the strategy unrolls to
   // (extract()), never a loop. Memoized per evaluation by (state, depth): the graph does not change
-  // during an evaluation (checks, expansions and projections come between evaluations). Unchecked arcs
-  // count as usable, so a false stays false when checks later reject or widen them.
+  // during an evaluation (checks, expansions and projections come between evaluations). Arcs not yet
+  // refuted count as usable, so a false stays false when checks later reject or widen them.
   bool success(const State& s, int depth) {
     if (is_goal(s)) return true;
     if (depth == 0) return false;
@@ -295,7 +294,7 @@ class Search {
     bool ok = false;
     for (std::size_t i = 0; i < it->second.size() && !ok; ++i) {
       GraphArc& arc = it->second[i];  // stays in place: arcs are only added between evaluations
-      if (arc.check == GraphArc::Check::kRejected) continue;
+      if (arc.rejected) continue;
       // A start projection holds from the start region only, not from the start atoms met again later.
       if (arc.from_start_projection && depth != req_.max_motions) continue;
       ok = std::all_of(arc.heads.begin(), arc.heads.end(),
@@ -317,7 +316,7 @@ class Search {
         if (std::any_of(step.arc.heads.begin(), step.arc.heads.end(),
                         [&](const State& h) { return !is_goal(h); }) &&
             step.arc.heads.size() > 1) {
-          graph_.at(step.state)[step.arc_index].check = GraphArc::Check::kRejected;
+          graph_.at(step.state)[step.arc_index].rejected = true;
           return false;
         }
       return true;  // no arc branches to a non-goal head: returned unverified, as a branching plan
@@ -343,7 +342,7 @@ class Search {
         ++widened_;
         arc.arc.targets = widened;
         arc.heads = confusable_sets(confusable_, widened);
-        if (!usable(arc)) arc.check = GraphArc::Check::kRejected;
+        if (!usable(arc)) arc.rejected = true;
         return false;
       }
     }
@@ -358,7 +357,7 @@ class Search {
   // The arc's next cell with the same simulated targets, or rejection when none is left.
   void next_cell_or_reject(GraphArc& arc) {
     if (arc.alternatives.empty()) {
-      arc.check = GraphArc::Check::kRejected;
+      arc.rejected = true;
       return;
     }
     auto& [cell, interior] = arc.alternatives.front();
@@ -399,7 +398,7 @@ class Search {
         continue;
       }
       for (const GraphArc& arc : it->second)
-        if (arc.check != GraphArc::Check::kRejected)
+        if (!arc.rejected)
           for (const State& h : arc.heads) queue.push_back({h, depth + 1});
     }
     return best;

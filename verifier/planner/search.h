@@ -63,8 +63,7 @@ struct GraphArc {
   // Other cells with the same simulated targets, deepest first, tried in turn when `confirm_chain` finds
   // the motion may fail.
   std::vector<std::pair<CPositionSet, CPositionSet::InteriorPoint>> alternatives;
-  enum class Check { kUnchecked, kConfirmed, kRejected };
-  Check check = Check::kUnchecked;
+  bool rejected = false;  // refuted by confirm_chain (or its heads grew too big): never chosen
   // Targets from PlanRequest::start_targets at `commanded` alone (arc.cpositions is empty: no cell is
   // claimed), instead of the simulation's cell.
   bool from_start_projection = false;
