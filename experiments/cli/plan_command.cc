@@ -1,7 +1,8 @@
 // `cmt plan TASK --states [--max-atoms K] [--friction MU] [--eps-s E] [--theta-f T] [--list] --json`: the
 // primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--max-atoms K] [--max-motions M]
-// --json [-o OUT.yaml]`: the planner's search over sticking arcs (§6.5–6.7), the planned strategy checked by
-// the verifier (docs/planner.md).
+// --json [-o OUT.yaml] [--check N] [--extremes N]`: the planner's search over sticking arcs (§6.5–6.7), the
+// planned strategy checked by the verifier, by rollouts and by §6.3.4's extreme-point experiment
+// (docs/planner.md).
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "experiments/cli/command.h"
 #include "experiments/common/task_motions.h"
 #include "experiments/common/task_overrides.h"
+#include "experiments/plan/extreme_points.h"
 #include "experiments/validation/validation.h"
 #include "experiments/validation/verifier_model.h"
 #include "models/loaded_task.h"
@@ -27,9 +29,11 @@ namespace {
 
 struct PlanCli {
   std::string task, out, termination = "sticking";
-  bool states = false, list = false;
+  bool states = false, list = false, no_chain_projections = false;
   int max_atoms = 0, max_motions = 3, max_expansions = 200;
   int check = 0, threads = 1;  // rollouts of the planned strategy (0: none), and their threads
+  int extremes = 0;            // rollouts per point of the extreme-point experiment (0: none)
+  std::vector<double> grow = {1, 2, 4};
   std::uint64_t seed = 1;
   long long max_states = 1'000'000;
   std::optional<double> friction, eps_s, theta_f;
@@ -94,21 +98,22 @@ std::vector<std::string> planned_motion_names(const Task& task, std::size_t n) {
   }
 }
 
-// The planned strategy written into the task (decision-free plans only), verified, and written to -o.
-void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask& task,
-                  const planner::PlanResult& plan, const std::vector<std::string>& names,
-                  nlohmann::json& out) {
+// The planned strategy written into the task (decision-free plans only), verified, and written to -o. Returns
+// the planned task (nothing when no strategy is written).
+std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::string& text,
+                                               const LoadedTask& task, const planner::PlanResult& plan,
+                                               const std::vector<std::string>& names, nlohmann::json& out) {
   if (plan.steps.empty()) {
     out["strategy"] = nlohmann::json::array();
     out["strategy_reason"] = "the start lies in the goal: no motion is needed";
-    return;
+    return nullptr;
   }
   if (!plan.decision_free) {
     out["strategy"] = nullptr;
     out["strategy_reason"] =
         "the plan branches on sensed states; only decision-free plans are written as strategies (and "
         "verified)";
-    return;
+    return nullptr;
   }
   std::vector<AddedMotion> motions;
   for (std::size_t i = 0; i < plan.steps.size(); ++i)
@@ -143,6 +148,24 @@ void add_strategy(const PlanCli& cli, const std::string& text, const LoadedTask&
     if (!(file << planned)) throw TaskError(cli.out, "-o", "cannot write the planned task");
     out["written"] = cli.out;
   }
+  return planned_task;
+}
+
+// §6.3.4's experiment (experiments/plan/extreme_points.h) on the planned strategy: JSON `extremes`.
+void add_extremes(const PlanCli& cli, const std::shared_ptr<const LoadedTask>& planned,
+                  const planner::PlanResult& plan, const std::vector<std::string>& names,
+                  nlohmann::json& out) {
+  std::vector<PlannedMotionCell> cells;
+  for (std::size_t i = 0; i < plan.steps.size(); ++i)
+    cells.push_back({names[i], plan.steps[i].arc.commanded, plan.steps[i].arc.arc.cpositions});
+  ExtremePointOptions options;
+  options.rollouts = cli.extremes;
+  options.grow = cli.grow;
+  options.seed = cli.seed;
+  options.threads = cli.threads;
+  const std::vector<MotionExtremes> result =
+      run_extreme_points(planned, out["strategy_name"].get<std::string>(), cells, options);
+  out["extremes"] = extreme_points_json(*planned, result, options);
 }
 
 void run_plan_search(const PlanCli& cli, CommandState& state) {
@@ -166,6 +189,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   request.max_atoms = cli.max_atoms > 0 ? cli.max_atoms : c.atom_count();
   request.max_motions = cli.max_motions;
   request.max_expansions = cli.max_expansions;
+  request.chain_projections = !cli.no_chain_projections;
   const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
   request.confirm_chain = [&](const std::vector<Vec3>& commanded) {
     return planner::verifier_chain(*task, commanded, verify_options);
@@ -188,7 +212,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"widened", plan.widened},
                         {"decision_free", plan.decision_free},
                         {"chains_checked", plan.chains_checked},
-                        {"start_projections", plan.start_projections}};
+                        {"start_projections", plan.start_projections},
+                        {"chain_projections", plan.chain_projections}};
   nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
   const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
   for (std::size_t i = 0; i < plan.steps.size(); ++i) {
@@ -196,7 +221,9 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
     motions.push_back({{"name", names[i]},
                        {"commanded", point_json(arc.commanded, task->task.dimension)},
                        {"depth", arc.depth},
-                       {"source", arc.from_start_projection ? "start projection" : "simulation"},
+                       {"source", arc.from_start_projection   ? "start projection"
+                                  : arc.from_chain_projection ? "chain projection"
+                                                              : "simulation"},
                        {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)}});
     steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
                      {"motion", names[i]},
@@ -205,18 +232,22 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   }
   out["motions"] = motions;
   out["steps"] = steps;
-  if (plan.found)
-    add_strategy(cli, text, *task, plan, names, out);
-  else
+  if (plan.found) {
+    const auto planned = add_strategy(cli, text, *task, plan, names, out);
+    if (planned && cli.extremes > 0) add_extremes(cli, planned, plan, names, out);
+  } else {
     out["reason"] = plan.reason, out["strategy"] = nullptr;
+  }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Success: a plan whose strategy the verifier found reliable (or no motion needed) and whose rollouts, if
-  // run, all reached the goal. A branching plan is not verified: exit 1 with its strategy_reason.
+  // run, all reached the goal, those commanded at its cells' vertices (--extremes) too. A branching plan is
+  // not verified: exit 1 with its strategy_reason.
   bool verified = plan.found && (plan.steps.empty() ||
                                  (out.contains("verified") && out["verified"]["reliable"].get<bool>()));
   if (out.contains("check"))
     verified =
         verified && out["check"]["outside"] == 0 && out["check"]["successes"] == out["check"]["rollouts"];
+  if (out.contains("extremes")) verified = verified && out["extremes"]["vertices_all_succeed"].get<bool>();
   if (state.json)
     print_json(out);
   else
@@ -289,12 +320,20 @@ void add_plan_command(CLI::App& app, CommandState& state) {
       ->check(CLI::Range(1, 20));
   cmd->add_option("--max-expansions", cli->max_expansions, "states the search may expand (default 200)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--no-chain-projections", cli->no_chain_projections,
+                "no continuations of the start projections (later motions from the simulation's cells only)");
   cmd->add_option("--termination", cli->termination, "how the planned motions end: sticking (the default)");
   cmd->add_option("--check", cli->check,
                   "run N MuJoCo rollouts of the planned strategy (`cmt validate`) and report them as check")
       ->check(CLI::Range(0, 1'000'000));
-  cmd->add_option("--seed", cli->seed, "master seed of the --check rollouts (default 1)");
-  cmd->add_option("--threads", cli->threads, "threads of the --check rollouts (default 1)")
+  cmd->add_option("--extremes", cli->extremes,
+                  "Sec 6.3.4's experiment: N rollouts with each motion commanded at each vertex of its "
+                  "cpositions, and at the vertices of the cpositions grown by --grow (JSON extremes)")
+      ->check(CLI::Range(0, 1'000'000));
+  cmd->add_option("--grow", cli->grow, "growths of the cpositions for --extremes, in eps_p (default 1 2 4)")
+      ->check(CLI::Range(0.0, 1000.0));
+  cmd->add_option("--seed", cli->seed, "master seed of the --check and --extremes rollouts (default 1)");
+  cmd->add_option("--threads", cli->threads, "threads of the --check and --extremes rollouts (default 1)")
       ->check(CLI::Range(1, 256));
   cmd->add_option("-o", cli->out,
                   "write the task with the planned strategy added (spring motions planned_1, ...)");

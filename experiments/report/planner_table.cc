@@ -73,4 +73,46 @@ Table planner_table(const std::vector<json>& runs) {
   return t;
 }
 
+namespace {
+
+std::string trials_text(const json& trials) {
+  std::ostringstream out;
+  out.precision(3);
+  const json& points = json_member(trials, "points");
+  out << json_member(trials, "successes").get<int>() << " / " << json_member(trials, "rollouts").get<int>()
+      << " at " << (points.is_array() ? points.size() : 0) << " points";
+  return out.str();
+}
+
+std::string grown_text(const json& grown) {
+  std::ostringstream out;
+  out.precision(3);
+  if (!grown.is_array()) return "";
+  for (const json& g : grown) {
+    if (out.tellp() > 0) out << "; ";
+    out << json_number(g, "factor") << " eps_p: " << 100 * json_number(g, "rate") << " % (" << trials_text(g)
+        << ")";
+  }
+  return out.str();
+}
+
+}  // namespace
+
+Table extremes_table(const std::vector<json>& runs) {
+  Table t;
+  t.headers = {"task", "motion", "claims", "at the vertices: reached the goal", "outside, grown by"};
+  for (const json& run : runs) {
+    const json& e = json_member(run, "extremes");
+    if (!e.is_object()) continue;
+    for (const json& m : json_member(e, "motions")) {
+      t.rows.push_back({text_cell(json_member(run, "task").get<std::string>()),
+                        text_cell(json_member(m, "motion").get<std::string>()),
+                        text_cell(json_flag(m, "claims_cell") ? "a cell" : "one commanded position"),
+                        text_cell(trials_text(json_member(m, "vertices"))),
+                        text_cell(grown_text(json_member(m, "grown")))});
+    }
+  }
+  return t;
+}
+
 }  // namespace cmt::report

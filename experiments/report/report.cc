@@ -11,6 +11,7 @@
 #include "experiments/common/json_text.h"
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/edr_figure.h"
+#include "experiments/report/extremes_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
@@ -28,6 +29,7 @@ constexpr const char* kFigureDir = "figures";
 constexpr const char* kFigurePrefix = "config_";  // every figure and 3-D page this command writes starts so
 constexpr const char* kViewDir = "view";          // 3-D pages (view_page.h) and their shared assets
 constexpr const char* kEdrFigurePrefix = "edr_";  // the EDR outcome figures (write_edr_figures)
+constexpr const char* kExtremesFigurePrefix = "extremes_";  // §6.3.4's experiment (write_extremes_figures)
 
 std::string key(const ConfigRow& c, const std::string& column) {
   return column + " (config_id " + std::to_string(c.config_id) + ")";
@@ -46,7 +48,8 @@ void prepare_output(const std::filesystem::path& out_dir) {
     for (const auto& entry : std::filesystem::directory_iterator(out_dir / dir)) {
       const std::string name = entry.path().filename().string();
       if (entry.is_regular_file() &&
-          (name.rfind(kFigurePrefix, 0) == 0 || name.rfind(kEdrFigurePrefix, 0) == 0) &&
+          (name.rfind(kFigurePrefix, 0) == 0 || name.rfind(kEdrFigurePrefix, 0) == 0 ||
+           name.rfind(kExtremesFigurePrefix, 0) == 0) &&
           entry.path().extension() == extension)
         std::filesystem::remove(entry.path());
     }
@@ -287,6 +290,30 @@ std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs
   return refs;
 }
 
+// Per plan result with §6.3.4's experiment, its success rates (extremes_figure.h) in
+// figures/extremes_<i>.png, added to `figures` with kind "extremes".
+std::vector<FigureRef> write_extremes_figures(const std::vector<nlohmann::json>& runs,
+                                              const std::filesystem::path& out_dir, nlohmann::json* figures) {
+  std::vector<FigureRef> refs;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const std::string task =
+        runs[i].contains("task") && runs[i]["task"].is_string() ? runs[i]["task"].get<std::string>() : "?";
+    const std::string label = task + ": planned motions commanded at and outside their cpositions (6.3.4)";
+    const std::optional<PlotCanvas> canvas = draw_extremes_figure(runs[i], label);
+    if (!canvas) continue;
+    const std::string file =
+        std::string(kFigureDir) + "/" + kExtremesFigurePrefix + std::to_string(i) + ".png";
+    canvas->save(out_dir / file);
+    refs.push_back({file, label});
+    nlohmann::json entry = canvas->layout();
+    entry["file"] = file;
+    entry["config_id"] = nullptr;
+    entry["kind"] = "extremes";
+    figures->push_back(entry);
+  }
+  return refs;
+}
+
 }  // namespace
 
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
@@ -310,8 +337,10 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   content.teaching = teaching_table(teaching);
   content.edr = edr_table(edr);
   content.planner = planner_table(plans);
+  content.extremes = extremes_table(plans);
   nlohmann::json figures = builder.figures();
   content.edr_figures = write_edr_figures(edr, out_dir, &figures);
+  content.extremes_figures = write_extremes_figures(plans, out_dir, &figures);
   summary.configs = static_cast<int>(db.configs.size());
   summary.figures = static_cast<int>(figures.size());
   summary.index = out_dir / "index.html";

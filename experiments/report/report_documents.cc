@@ -165,10 +165,21 @@ constexpr const char* kPlannerIntro =
     "depth of the commanded position inside its set of commanded positions), the verifier's verdict on the "
     "planned strategy from the task's start, and MuJoCo rollouts of it.";
 
-void md_planner(std::ostream& md, const Table& t) {
-  if (t.rows.empty()) return;
+constexpr const char* kExtremesIntro =
+    "Buckley's extreme-point experiment (Sec 6.3.4) in simulation (cmt plan --extremes): each planned motion "
+    "commanded at every vertex of its set of commanded positions (the planner claims them all, so every "
+    "rollout must reach the goal), then at the vertices of the set grown by k eps_p, outside it: how "
+    "conservative the planner is.";
+
+void md_planner(std::ostream& md, const ReportContent& c) {
+  if (c.planner.rows.empty()) return;
   md << "## " << kPlannerTitle << "\n\n" << kPlannerIntro << "\n\n";
-  md_table(md, t);
+  md_table(md, c.planner);
+  if (c.extremes.rows.empty()) return;
+  md << kExtremesIntro << "\n\n";
+  md_table(md, c.extremes);
+  for (const FigureRef& f : c.extremes_figures) md << "![" << md_escape(f.caption) << "](" << f.file << ")\n";
+  if (!c.extremes_figures.empty()) md << "\n";
 }
 
 void md_section(std::ostream& md, const ConfigSection& s) {
@@ -286,11 +297,15 @@ void html_edr(std::ostream& h, const Table& t, const std::vector<FigureRef>& fig
   html_figures(h, figures);
 }
 
-void html_planner(std::ostream& h, const Table& t) {
-  if (t.rows.empty()) return;
+void html_planner(std::ostream& h, const ReportContent& c) {
+  if (c.planner.rows.empty()) return;
   h << "<h2 id=\"planner\">" << kPlannerTitle << "</h2>\n<p>" << html_escape(kPlannerIntro)
     << "</p>\n<table class=\"planner\">\n";
-  html_rows(h, t);
+  html_rows(h, c.planner);
+  if (c.extremes.rows.empty()) return;
+  h << "<p>" << html_escape(kExtremesIntro) << "</p>\n<table class=\"extremes\">\n";
+  html_rows(h, c.extremes);
+  html_figures(h, c.extremes_figures);
 }
 
 void html_section(std::ostream& h, const ReportContent& c, std::size_t i) {
@@ -349,7 +364,7 @@ std::string render_markdown(const ReportContent& c) {
   md_falsify(md, c.falsify);
   md_teaching(md, c.teaching);
   md_edr(md, c.edr, c.edr_figures);
-  md_planner(md, c.planner);
+  md_planner(md, c);
   for (const ConfigSection& s : c.sections) md_section(md, s);
   return md.str();
 }
@@ -364,7 +379,7 @@ std::string render_html(const ReportContent& c) {
   html_falsify(h, c.falsify);
   html_teaching(h, c.teaching);
   html_edr(h, c.edr, c.edr_figures);
-  html_planner(h, c.planner);
+  html_planner(h, c);
   h << "<h2 id=\"details\">Details per configuration</h2>\n";
   for (std::size_t i = 0; i < c.sections.size(); ++i) html_section(h, c, i);
   h << "</body>\n</html>\n";

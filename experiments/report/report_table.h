@@ -86,8 +86,12 @@ struct ReportContent {
   // result with a physics check its outcomes against the first model parameter (edr_figure.h).
   Table edr;
   std::vector<FigureRef> edr_figures;
-  // "Planned strategies": one row per `cmt plan --json` result given to `cmt report --plan`.
+  // "Planned strategies": one row per `cmt plan --json` result given to `cmt report --plan`; for results
+  // with §6.3.4's experiment (`--extremes`), a row per motion in `extremes` and a figure each
+  // (extremes_figure.h).
   Table planner;
+  Table extremes;
+  std::vector<FigureRef> extremes_figures;
   std::vector<ConfigSection> sections;
 };
 
@@ -137,6 +141,9 @@ Table teaching_table(const std::vector<TeachingRun>& runs);
 
 // Per `cmt plan --json` object: task, found (or why not), the motions, the verifier's verdict, the rollouts.
 Table planner_table(const std::vector<nlohmann::json>& runs);
+// Per motion of each result with `extremes`: task, motion, what it claims (a cell, or one commanded
+// position), its vertices' rollouts and successes, and the success rate at each growth.
+Table extremes_table(const std::vector<nlohmann::json>& runs);
 
 // ---- Error detection and recovery (edr_table.cc; docs/edr.md) ----
 

@@ -3,6 +3,7 @@
 // input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "tests/experiments/cmt_runner.h"
@@ -77,7 +78,7 @@ TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
 
 // §6.3.3: the hole from the start segment on the top face. The first motion comes from the start projection
 // (the verifier from the segment itself: the simulation from the whole top face may leave it over its flat
-// edges); the chain is verified, and every rollout reaches the goal.
+// edges), the second from a chain projection; the chain is verified, and every rollout reaches the goal.
 TEST(CmtPlan, HoleHasATwoMotionPlanFromTheStartProjectionThatTheRolloutsConfirm) {
   const Result r = run("plan " + task("hole") + " --check 60 --seed 7 --threads 2 --json");
   ASSERT_EQ(r.status, 0) << r.out;
@@ -92,11 +93,55 @@ TEST(CmtPlan, HoleHasATwoMotionPlanFromTheStartProjectionThatTheRolloutsConfirm)
   EXPECT_FALSE(j["steps"][0]["targets"].empty());
   for (const auto& atom : j["steps"][0]["targets"]) EXPECT_NE(atom, "f5");
   EXPECT_EQ(j["steps"][0]["heads"].size(), 1u);
+  // The second motion continues the projection from its own stops on the far wall: Buckley's p1, beneath
+  // the hole (a contact seed behind the bottom face), which may stop only on the bottom.
+  EXPECT_EQ(j["motions"][1]["source"], "chain projection");
+  EXPECT_GE(j["chain_projections"].get<int>(), 1);
+  EXPECT_EQ(j["steps"][1]["state"], j["steps"][0]["heads"][0]);
+  EXPECT_EQ(j["steps"][1]["targets"], nlohmann::json::array({"f8"}));  // the bottom face
+  EXPECT_LT(j["motions"][1]["commanded"][2].get<double>(), -2.0);        // beneath the bottom's plane
   EXPECT_TRUE(j["decision_free"].get<bool>());
   EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
   EXPECT_EQ(j["check"]["rollouts"], 60);
   EXPECT_EQ(j["check"]["successes"], 60);
   EXPECT_EQ(j["check"]["outside"], 0);
+}
+
+// §6.3.4 in simulation: the cube's planned motion commanded at each vertex of its cell (every rollout reaches
+// the goal), then at the vertices of the cell grown by eps_p, each outside it by eps_p.
+TEST(CmtPlan, CubeMotionReachesTheGoalFromEveryVertexOfItsCell) {
+  const Result r = run("plan " + task("cube") + " --extremes 10 --grow 1 --seed 3 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& e = j["extremes"];
+  EXPECT_TRUE(e["vertices_all_succeed"].get<bool>());
+  EXPECT_EQ(e["rollouts_per_point"], 10);
+  ASSERT_EQ(e["motions"].size(), 1u);
+  const auto& m = e["motions"][0];
+  EXPECT_EQ(m["motion"], "planned_1");
+  EXPECT_TRUE(m["claims_cell"].get<bool>());
+  const auto& cell = j["motions"][0]["cpositions"];
+  ASSERT_EQ(cell.size(), 1u);
+  EXPECT_EQ(m["vertices"]["points"].size(), cell[0]["vertices"].size());
+  for (const auto& p : m["vertices"]["points"]) {
+    EXPECT_EQ(p["rollouts"], 10);
+    EXPECT_EQ(p["successes"], 10) << p;
+    EXPECT_EQ(p["outside"], 0) << p;
+  }
+  ASSERT_EQ(m["grown"].size(), 1u);
+  EXPECT_EQ(m["grown"][0]["factor"], 1.0);
+  const double eps_p = e["eps_p"].get<double>();
+  EXPECT_GE(m["grown"][0]["points"].size(), cell[0]["vertices"].size());
+  for (const auto& p : m["grown"][0]["points"]) {
+    double violation = -1e300;  // the largest violation of a half-space of the cell: at least eps_p
+    for (const auto& h : cell[0]["halfspaces"]) {
+      double dot = 0;
+      for (int k = 0; k < 3; ++k) dot += h[k].get<double>() * p["commanded"][k].get<double>();
+      violation = std::max(violation, dot - h[3].get<double>());
+    }
+    EXPECT_GE(violation, eps_p * (1 - 1e-9)) << p;
+    EXPECT_EQ(p["rollouts"], 10);
+  }
 }
 
 TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "experiments/report/edr_figure.h"
+#include "experiments/report/extremes_figure.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
 #include "experiments/report/results_db.h"
@@ -1114,4 +1115,51 @@ TEST(Report, EdrFigureMergesTheWorldsOfADiscreteValue) {
   EXPECT_EQ(color_at(2.0, 0.5), blue);
   EXPECT_NE(color_at(1.5, 0.5), green);  // nothing between the values
   EXPECT_NE(color_at(1.5, 0.5), blue);
+}
+
+// §6.3.4's experiment in the report: a row per motion (what it claims, its vertices' rollouts, the rate at
+// each growth) and a figure with each motion's success rate against the distance outside its cpositions.
+TEST(Report, ExtremePointsTableAndFigureShowEachMotionsRates) {
+  const json trials_all = {{"points", json::array({json::object(), json::object()})},
+                           {"rollouts", 200},
+                           {"successes", 200},
+                           {"rate", 1.0}};
+  const json grown_half = {{"factor", 1.0},
+                           {"points", json::array({json::object()})},
+                           {"rollouts", 100},
+                           {"successes", 50},
+                           {"rate", 0.5}};
+  const json run = {
+      {"task", "cube"},
+      {"found", true},
+      {"termination", "sticking"},
+      {"extremes",
+       {{"motions",
+         {{{"motion", "planned_1"}, {"claims_cell", true}, {"vertices", trials_all}, {"grown", {grown_half}}},
+          {{"motion", "planned_2"},
+           {"claims_cell", false},
+           {"vertices", trials_all},
+           {"grown", json::array()}}}}}}};
+  const cmt::report::Table t = cmt::report::extremes_table({run, {{"task", "hole"}, {"found", false}}});
+  ASSERT_EQ(t.rows.size(), 2u);
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  content.planner = cmt::report::planner_table({run});
+  content.extremes = t;
+  const std::string md = cmt::report::render_markdown(content);
+  EXPECT_NE(md.find("| cube | planned_1 | a cell | 200 / 200 at 2 points | 1 eps_p: 50 % (50 / 100 at 1 "
+                    "points) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| cube | planned_2 | one commanded position | 200 / 200 at 2 points |  |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(cmt::report::render_html(content).find("<table class=\"extremes\">"), std::string::npos);
+
+  const auto canvas = cmt::report::draw_extremes_figure(run, "cube");
+  ASSERT_TRUE(canvas.has_value());
+  EXPECT_EQ(figure_color_at(*canvas, 1.0, 0.5), 0x0072b2);   // planned_1's marker at (1 eps_p, 50 %)
+  EXPECT_EQ(figure_color_at(*canvas, 0.5, 0.75), 0x0072b2);  // on its line from (0, 1)
+  EXPECT_NE(figure_color_at(*canvas, 0.5, 0.25), 0x0072b2);
+  EXPECT_FALSE(cmt::report::draw_extremes_figure({{"task", "cube"}}, "cube").has_value());
 }

@@ -13,6 +13,8 @@
 namespace cmt::planner {
 namespace {
 
+// Two face normals closer than this (the sine of their angle) make a flat edge: no edge seeds.
+constexpr double kParallelNormals = 1e-9;
 // The seed grid's points per axis, and the seeds whose cells are built per target set.
 constexpr int kSeedGrid = 12;
 constexpr int kSeedsPerTargetSet = 8;
@@ -45,7 +47,8 @@ class Search {
           break;
         }
         add_start_projection_arc(out);  // refutations do not hold the projections back
-        continue;                       // the refuted arc changed: evaluate again
+        add_chain_projection_arc(out);
+        continue;  // the refuted arc changed: evaluate again
       }
       // One state expanded and one start projection arc added per round, so the projections (a verifier
       // call each) are spread over the search rather than paid for before it. A round that expands the start
@@ -57,7 +60,9 @@ class Search {
         expand(*next);
         ++out.expanded;
       }
-      if (!(may_project && add_start_projection_arc(out)) && !expands) {
+      const bool projected = may_project && add_start_projection_arc(out);
+      const bool chained = may_project && add_chain_projection_arc(out);
+      if (!projected && !chained && !expands) {
         out.reason =
             next ? "the expansion limit (" + std::to_string(req_.max_expansions) + " states) was reached"
                  : "no strategy of at most " + std::to_string(req_.max_motions) +
@@ -154,8 +159,7 @@ class Search {
         if (add_projection_alternative(*targets, p)) return true;
         continue;
       }
-      GraphArc arc{
-          Arc{*targets, CPositionSet::none(sim_.domain())}, p, 0, confusable_sets(confusable_, *targets), {}};
+      GraphArc arc = point_arc(*targets, p);
       arc.from_start_projection = true;
       if (!usable(arc)) continue;
       // After the arcs at the same or a smaller goal distance: the simulation's arcs are cells of commanded
@@ -185,6 +189,8 @@ class Search {
         if (arc.rejected) {
           arc.commanded = p;
           arc.rejected = false;
+          arc.continuations.clear();  // they hold after the old command only
+          arc.next_chain_seed = 0;
           revived = true;
         } else {
           arc.alternatives.push_back({CPositionSet::none(sim_.domain()), CPositionSet::InteriorPoint{p, 0}});
@@ -192,6 +198,66 @@ class Search {
       }
     }
     return revived;
+  }
+
+  // One continuation per call (GraphArc::continuations): PlanRequest::confirm_chain of (a start projection's
+  // command, its next chain seed), for the first start projection arc in the start state's order whose one
+  // head is not a goal and that has seeds left; the second motion's verified stops make the continuation's
+  // targets. Motions that may fail, rest in free space or stop where an earlier continuation of the arc
+  // (not rejected) stops make none. False when no arc has seeds left.
+  bool add_chain_projection_arc(PlanResult& out) {
+    if (!req_.chain_projections || !req_.confirm_chain || !req_.start_targets || req_.max_motions < 2 ||
+        start_states().size() != 1)
+      return false;
+    const auto it = graph_.find(start_states().front());
+    if (it == graph_.end()) return false;
+    if (chain_seeds_.empty()) chain_seeds_ = chain_seeds(cspace_, req_.goal_atom, req_.eps_s);
+    const std::vector<Vec3>& seeds = chain_seeds_;
+    for (GraphArc& arc : it->second) {
+      if (!arc.from_start_projection || arc.rejected || arc.heads.size() != 1 || is_goal(arc.heads[0]))
+        continue;
+      while (arc.next_chain_seed < seeds.size()) {
+        const Vec3 q = seeds[arc.next_chain_seed++];
+        const ChainVerdict& verdict = chain_verdict({arc.commanded, q}, &out.chain_projections);
+        if (verdict.ends.size() < 2 || !verdict.ends[1]) continue;
+        const std::vector<int>& targets = *verdict.ends[1];
+        if (targets.empty() || targets.back() == sim_.free_atom()) continue;
+        if (std::any_of(arc.continuations.begin(), arc.continuations.end(),
+                        [&](const GraphArc& c) { return !c.rejected && c.arc.targets == targets; }))
+          continue;
+        GraphArc next = point_arc(targets, q);
+        next.from_chain_projection = true;
+        if (!usable(next)) continue;
+        // Nearest the goal first, as a state's arcs.
+        const double distance = goal_distance(targets);
+        const auto at =
+            std::find_if(arc.continuations.begin(), arc.continuations.end(),
+                         [&](const GraphArc& c) { return goal_distance(c.arc.targets) > distance; });
+        arc.continuations.insert(at, std::move(next));
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // An arc that claims no cell: one commanded position and the targets the verifier found for it.
+  GraphArc point_arc(const std::vector<int>& targets, const Vec3& p) const {
+    GraphArc arc;
+    arc.arc = Arc{targets, CPositionSet::none(sim_.domain())};
+    arc.commanded = p;
+    arc.heads = confusable_sets(confusable_, targets);
+    return arc;
+  }
+
+  // PlanRequest::confirm_chain, each chain verified once (a continuation's chain is checked again as a
+  // candidate when it completes a plan); `calls` counts the verifications made.
+  const ChainVerdict& chain_verdict(const std::vector<Vec3>& commanded, int* calls = nullptr) {
+    std::vector<double> key;
+    for (const Vec3& p : commanded) key.insert(key.end(), {p.x(), p.y(), p.z()});
+    const auto known = chain_verdicts_.find(key);
+    if (known != chain_verdicts_.end()) return known->second;
+    if (calls) ++*calls;
+    return chain_verdicts_.emplace(std::move(key), req_.confirm_chain(commanded)).first->second;
   }
 
   // The arc of one target set: the deepest of the cells of its seeds, the others its alternatives; nothing
@@ -210,11 +276,11 @@ class Search {
     if (cells.empty()) return std::nullopt;
     std::stable_sort(cells.begin(), cells.end(),
                      [](const auto& a, const auto& b) { return a.second.depth > b.second.depth; });
-    GraphArc arc{Arc{targets, cells[0].first},
-                 cells[0].second.point,
-                 cells[0].second.depth,
-                 confusable_sets(confusable_, targets),
-                 {}};
+    GraphArc arc;
+    arc.arc = Arc{targets, cells[0].first};
+    arc.commanded = cells[0].second.point;
+    arc.depth = cells[0].second.depth;
+    arc.heads = confusable_sets(confusable_, targets);
     arc.alternatives.assign(std::make_move_iterator(cells.begin() + 1), std::make_move_iterator(cells.end()));
     return arc;
   }
@@ -299,7 +365,15 @@ class Search {
       if (arc.from_start_projection && depth != req_.max_motions) continue;
       ok = std::all_of(arc.heads.begin(), arc.heads.end(),
                        [&](const State& h) { return success(h, depth - 1); });
-      if (ok) choice_[{s, depth}] = i;
+      int via = -1;  // the continuation taken after a start projection (one head, not a goal), if any
+      const bool continues = arc.heads.size() == 1 && !is_goal(arc.heads[0]) && depth >= 2;
+      for (std::size_t c = 0; !ok && continues && c < arc.continuations.size(); ++c) {
+        const GraphArc& next = arc.continuations[c];
+        ok = !next.rejected && std::all_of(next.heads.begin(), next.heads.end(),
+                                           [&](const State& h) { return success(h, depth - 2); });
+        if (ok) via = static_cast<int>(c);
+      }
+      if (ok) choice_[{s, depth}] = {i, via};
     }
     memo_[{s, depth}] = ok;
     return ok;
@@ -316,7 +390,7 @@ class Search {
         if (std::any_of(step.arc.heads.begin(), step.arc.heads.end(),
                         [&](const State& h) { return !is_goal(h); }) &&
             step.arc.heads.size() > 1) {
-          graph_.at(step.state)[step.arc_index].rejected = true;
+          step_arcs_[static_cast<std::size_t>(&step - out.steps.data())]->rejected = true;
           return false;
         }
       return true;  // no arc branches to a non-goal head: returned unverified, as a branching plan
@@ -324,7 +398,7 @@ class Search {
     std::vector<Vec3> commanded;
     for (const PlanStep& step : out.steps) commanded.push_back(step.arc.commanded);
     ++out.chains_checked;
-    const ChainVerdict verdict = req_.confirm_chain(commanded);
+    const ChainVerdict verdict = chain_verdict(commanded);
     if (verdict.reliable) {
       ++confirmed_;
       out.chain_verified = true;
@@ -332,7 +406,7 @@ class Search {
     }
     ++rejected_;
     for (std::size_t i = 0; i < out.steps.size() && i < verdict.ends.size(); ++i) {
-      GraphArc& arc = graph_.at(out.steps[i].state)[out.steps[i].arc_index];
+      GraphArc& arc = *step_arcs_[i];
       if (!verdict.ends[i]) {
         next_cell_or_reject(arc);
         return false;
@@ -342,15 +416,15 @@ class Search {
         ++widened_;
         arc.arc.targets = widened;
         arc.heads = confusable_sets(confusable_, widened);
+        arc.continuations.clear();  // they continue from the one head it had
+        arc.next_chain_seed = 0;
         if (!usable(arc)) arc.rejected = true;
         return false;
       }
     }
     // Every motion the verifier reports stopped within its arc's targets, yet the chain is unreliable: the
     // first motion it does not report (or the last one) goes.
-    const PlanStep& step = out.steps[std::min(verdict.ends.size(), out.steps.size() - 1)];
-    GraphArc& arc = graph_.at(step.state)[step.arc_index];
-    next_cell_or_reject(arc);
+    next_cell_or_reject(*step_arcs_[std::min(verdict.ends.size(), out.steps.size() - 1)]);
     return false;
   }
 
@@ -361,6 +435,8 @@ class Search {
       return;
     }
     auto& [cell, interior] = arc.alternatives.front();
+    arc.continuations.clear();  // they hold after the old command only
+    arc.next_chain_seed = 0;
     arc.arc.cpositions = std::move(cell);
     arc.commanded = interior.point;
     arc.depth = interior.depth;
@@ -385,21 +461,30 @@ class Search {
   std::optional<State> pick() const {
     std::optional<State> best;
     double best_distance = std::numeric_limits<double>::infinity();
-    std::set<State> seen;
+    // A continuation's heads are two motions on, so the queue is not in depth order: a state is walked
+    // again when met at a smaller depth.
+    std::map<State, int> seen;  // the smallest depth each state was walked at
     std::vector<std::pair<State, int>> queue;
     for (const State& s : start_states_) queue.push_back({s, 0});  // set by run()
     for (std::size_t i = 0; i < queue.size(); ++i) {
       const auto [s, depth] = queue[i];
-      if (!seen.insert(s).second || is_goal(s) || depth >= req_.max_motions) continue;
+      if (is_goal(s) || depth >= req_.max_motions) continue;
+      const auto walked = seen.find(s);
+      if (walked != seen.end() && walked->second <= depth) continue;
+      seen[s] = depth;
       const auto it = graph_.find(s);
       if (it == graph_.end()) {
         const double d = goal_distance(s);
         if (d < best_distance) best_distance = d, best = s;
         continue;
       }
-      for (const GraphArc& arc : it->second)
-        if (!arc.rejected)
-          for (const State& h : arc.heads) queue.push_back({h, depth + 1});
+      for (const GraphArc& arc : it->second) {
+        if (arc.rejected) continue;
+        for (const State& h : arc.heads) queue.push_back({h, depth + 1});
+        for (const GraphArc& next : arc.continuations)
+          if (!next.rejected)
+            for (const State& h : next.heads) queue.push_back({h, depth + 2});
+      }
     }
     return best;
   }
@@ -407,14 +492,25 @@ class Search {
   // The solution tree by motions left: every recorded choice at depth d is an arc whose heads succeeded at
   // d - 1 (and recorded their own choices), so the walk ends in goals after at most max_motions arcs. Keying
   // by state alone could join choices made at different depths into a loop.
-  void extract(PlanResult& out) const {
+  // A continuation is the step after its start projection, from the projection's head (step_arcs_: the
+  // graph's arc of each step, for the chain check to change).
+  void extract(PlanResult& out) {
     std::set<std::pair<State, int>> listed;
+    step_arcs_.clear();
     std::function<void(const State&, int)> walk = [&](const State& s, int depth) {
       if (is_goal(s) || !listed.insert({s, depth}).second) return;
-      const std::size_t index = choice_.at({s, depth});
-      const GraphArc& arc = graph_.at(s)[index];
+      const auto [index, via] = choice_.at({s, depth});
+      GraphArc& arc = graph_.at(s)[index];
       out.steps.push_back({s, depth, arc, index});
-      for (const State& h : arc.heads) walk(h, depth - 1);
+      step_arcs_.push_back(&arc);
+      if (via < 0) {
+        for (const State& h : arc.heads) walk(h, depth - 1);
+        return;
+      }
+      GraphArc& next = arc.continuations[static_cast<std::size_t>(via)];
+      out.steps.push_back({arc.heads[0], depth - 1, next, index});
+      step_arcs_.push_back(&next);
+      for (const State& h : next.heads) walk(h, depth - 2);
     };
     for (const State& s : out.start_states) walk(s, req_.max_motions);
     out.found = true;
@@ -433,11 +529,14 @@ class Search {
   const PlanRequest& req_;
   const Confusability confusable_;
   std::map<State, std::vector<GraphArc>> graph_;
-  std::map<std::pair<State, int>, std::size_t> choice_;
+  // Per (state, motions left): the chosen arc's index, and the continuation taken after it (-1: none).
+  std::map<std::pair<State, int>, std::pair<std::size_t, int>> choice_;
+  std::vector<GraphArc*> step_arcs_;  // extract(): the graph's arc of each step
+  std::map<std::vector<double>, ChainVerdict> chain_verdicts_;
   std::map<std::pair<State, int>, bool> memo_;
   std::vector<Vec3> seeds_;
   std::vector<State> start_states_;
-  std::vector<Vec3> projection_seeds_;
+  std::vector<Vec3> projection_seeds_, chain_seeds_;
   std::size_t next_projection_seed_ = 0;
   std::set<std::vector<int>> projected_targets_;
   int confirmed_ = 0, rejected_ = 0, widened_ = 0;
@@ -480,6 +579,41 @@ std::vector<Vec3> contact_seeds(const Face& face, double unit) {
   c /= static_cast<double>(face.polygon.size());
   std::vector<Vec3> out;
   for (double depth : kContactSeedDepths) out.push_back(c - depth * unit * face.normal);
+  return out;
+}
+
+std::vector<Vec3> edge_seeds(const CSpace& cspace, const Edge& edge, double unit) {
+  if (edge.faces.size() < 2) return {};
+  const Vec3 middle = (edge.a + edge.b) / 2;
+  const Vec3 n1 = cspace.faces()[static_cast<std::size_t>(edge.faces[0])].normal;
+  const Vec3 n2 = cspace.faces()[static_cast<std::size_t>(edge.faces[1])].normal;
+  if (n1.cross(n2).norm() < kParallelNormals) return {};  // a flat edge: the faces' contact seeds
+  std::vector<Vec3> out;
+  for (const auto& depths : kEdgeSeedDepths) out.push_back(middle - unit * (depths[0] * n1 + depths[1] * n2));
+  return out;
+}
+
+std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit) {
+  const auto goal = [&](int atom) { return atom < static_cast<int>(goal_atom.size()) && goal_atom[atom]; };
+  std::vector<Vec3> out;
+  std::vector<int> edges;  // atom ids
+  const auto add_edge = [&](int e) {
+    if (std::find(edges.begin(), edges.end(), e) == edges.end()) edges.push_back(e);
+  };
+  for (const Face& f : cspace.faces()) {
+    if (!goal(f.id)) continue;
+    for (const Vec3& p : contact_seeds(f, unit)) out.push_back(p);
+    for (int e : f.edges) add_edge(e);
+  }
+  for (const Edge& e : cspace.edges())
+    if (goal(e.id)) add_edge(e.id);
+  const int first_edge = static_cast<int>(cspace.faces().size());
+  for (std::size_t k = 0; k < std::size(kEdgeSeedDepths); ++k)
+    for (int e : edges) {
+      const std::vector<Vec3> behind =
+          edge_seeds(cspace, cspace.edges()[static_cast<std::size_t>(e - first_edge)], unit);
+      if (!behind.empty()) out.push_back(behind[k]);
+    }
   return out;
 }
 

@@ -50,6 +50,12 @@ struct PlanRequest {
   // start face wherever it is, while the projection follows the actual path. The seeds are taken in turn, one
   // new target set per round of the search. Unset: the start states' arcs are the simulation's only.
   std::function<std::optional<std::vector<int>>(const Vec3& commanded)> start_targets;
+  // With both checks set and one start state, chains of projections: a start projection's arc whose one head
+  // is not a goal also gets continuations (GraphArc::continuations), verified by confirm_chain from the
+  // projection's own termination set at the chain seeds (chain_seeds()), one new continuation per round.
+  // The simulation starts the second motion from the whole head atom, which may include places the first
+  // motion never stops at (a wall's rim).
+  bool chain_projections = true;
   int max_chain_checks = 40;  // candidates checked before the search gives up
 };
 
@@ -57,7 +63,7 @@ struct PlanRequest {
 // stop in, the commanded position chosen in it (CPositionSet::interior_point) and its target states (heads).
 struct GraphArc {
   Arc arc;
-  Vec3 commanded;
+  Vec3 commanded = Vec3::Zero();
   double depth = 0;          // of `commanded` inside its piece
   std::vector<State> heads;  // the maximal confusable sets of the targets
   // Other cells with the same simulated targets, deepest first, tried in turn when `confirm_chain` finds
@@ -67,6 +73,13 @@ struct GraphArc {
   // Targets from PlanRequest::start_targets at `commanded` alone (arc.cpositions is empty: no cell is
   // claimed), instead of the simulation's cell.
   bool from_start_projection = false;
+  // A start projection's continuations: arcs from its one head (not a goal) that hold only after it, each
+  // commanded at one chain seed with the second motion's stops of PlanRequest::confirm_chain(this
+  // arc's command, that seed) as targets (from_chain_projection; no cell claimed). Cleared when the
+  // projection's command or heads change; next_chain_seed is the next seed to try.
+  std::vector<GraphArc> continuations;
+  bool from_chain_projection = false;
+  std::size_t next_chain_seed = 0;
 };
 
 // A step of the found strategy: in `state`, with at most `motions_left` motions to go, command `arc`. The
@@ -75,7 +88,9 @@ struct PlanStep {
   State state;
   int motions_left = 0;
   GraphArc arc;
-  std::size_t arc_index = 0;  // of `arc` among the state's arcs
+  // Of `arc` among the state's arcs; for a continuation (from_chain_projection), of its start projection
+  // among the start state's arcs.
+  std::size_t arc_index = 0;
 };
 
 struct PlanResult {
@@ -87,10 +102,13 @@ struct PlanResult {
   int arcs = 0;                 // arcs built
   int confirmed = 0, rejected = 0;  // candidate chains confirm_chain accepted, refuted
   int widened = 0;                  // arcs whose targets a refutation widened
-  int chains_checked = 0;           // candidates given to confirm_chain (the last accepted when found)
-  bool chain_verified = false;      // the returned strategy is a chain confirm_chain found reliable
-  int start_projections = 0;        // calls of start_targets
-  bool decision_free = false;  // the solution is one chain of motions (each step but the last has one head)
+  // Candidates checked (the last accepted when found): by confirm_chain, or by the verdict of a chain
+  // projection of the same chain.
+  int chains_checked = 0;
+  bool chain_verified = false;  // the returned strategy is a chain confirm_chain found reliable
+  int start_projections = 0;    // calls of start_targets
+  int chain_projections = 0;    // confirm_chain calls made for continuations of start projections
+  bool decision_free = false;   // the solution is one chain of motions (each step but the last has one head)
 };
 
 // The maximal subsets of `atoms` whose atoms are pairwise confusable (Def 6.1): the states the robot may
@@ -103,6 +121,15 @@ std::vector<State> confusable_sets(const Confusability& confusable, const std::v
 // the verifier decides what each motion does.
 constexpr double kContactSeedDepths[] = {2, 5, 10};
 std::vector<Vec3> contact_seeds(const Face& face, double unit);
+// Commanded positions behind an edge (the T-slot's second motion, beyond the goal face and below the
+// second hole's floor): the edge's midpoint moved against its first face's normal by a and its second's by b,
+// for each (a, b) of kEdgeSeedDepths times `unit`. None for an edge without two faces of different normals
+// (a flat edge: the faces' contact seeds stand for it).
+constexpr double kEdgeSeedDepths[][2] = {{2.5, 2.5}, {5, 2.5}, {2.5, 5}, {5, 5}, {7.5, 5}, {5, 7.5}};
+std::vector<Vec3> edge_seeds(const CSpace& cspace, const Edge& edge, double unit);
+// The chain projections' seeds: the contact seeds behind the goal's faces, then the edge seeds behind the
+// edges that bound a goal face or are goal atoms, shallow pairs first over all those edges.
+std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit);
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request);
 

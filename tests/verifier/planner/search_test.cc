@@ -364,5 +364,89 @@ TEST(CubePlanStartProjection, NoneIsMadeWhenTheFirstCandidateHolds) {
   EXPECT_FALSE(plan.steps[0].arc.from_start_projection);
 }
 
+// A side face of the cube (horizontal normal) that touches the bottom.
+int side_face(const LoadedTask& task) {
+  for (const Face& f : task.cspace.faces())
+    if (std::abs(f.normal.z()) < 1e-12) return f.id;
+  ADD_FAILURE() << "no side face";
+  return 0;
+}
+
+// Chains of projections: the start projection stops every motion on a side face (not a goal) and only a
+// chain through one edge seed reaches the bottom. The projection's arc gets that seed's continuation, with
+// the second motion's verified stops as targets, and the plan is the two (the projection, then the
+// continuation from its head); the simulation's arcs from the side face are refuted.
+TEST(CubePlanChainProjection, AStartProjectionsHeadContinuesAtTheSeedWhoseChainReachesTheGoal) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  const int bottom = bottom_face(t), side = side_face(t);
+  const std::vector<Vec3> seeds = chain_seeds(t.cspace, r.goal_atom, r.eps_s);
+  const Vec3 good = seeds[5];  // an edge seed: the bottom's contact seeds come first
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return std::vector<int>{side};
+  };
+  std::vector<std::vector<Vec3>> chains;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    chains.push_back(commanded);
+    const bool projected = std::find(asked.begin(), asked.end(), commanded[0]) != asked.end();
+    if (!projected) return ChainVerdict{false, {std::nullopt}};
+    if (commanded.size() < 2) return ChainVerdict{false, {std::vector<int>{side}}};
+    if (commanded[1] != good) return ChainVerdict{false, {std::vector<int>{side}, std::nullopt}};
+    return ChainVerdict{true, {std::vector<int>{side}, std::vector<int>{bottom}}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  ASSERT_TRUE(plan.found) << plan.reason;
+  ASSERT_EQ(plan.steps.size(), 2u);
+  EXPECT_TRUE(plan.steps[0].arc.from_start_projection);
+  EXPECT_EQ(plan.steps[0].arc.commanded, asked[0]);
+  const GraphArc& next = plan.steps[1].arc;
+  EXPECT_TRUE(next.from_chain_projection);
+  EXPECT_EQ(plan.steps[1].state, std::vector<int>{side});
+  EXPECT_EQ(plan.steps[1].motions_left, r.max_motions - 1);
+  EXPECT_EQ(next.commanded, good);
+  EXPECT_EQ(next.arc.targets, std::vector<int>{bottom});
+  EXPECT_TRUE(next.arc.cpositions.pieces().empty());
+  EXPECT_TRUE(plan.decision_free);
+  EXPECT_TRUE(plan.chain_verified);
+  EXPECT_GE(plan.chain_projections, 6);  // the seeds before the good one were tried (after asked[0])
+  // The chain projections are the projection's command followed by the seeds in order (other chains through
+  // it are candidates with the simulation's arcs from the side face); the accepted chain was verified once
+  // (the continuation's verdict is reused for the candidate).
+  std::vector<Vec3> tried;
+  for (const auto& c : chains)
+    if (c.size() == 2 && c[0] == asked[0] && std::find(seeds.begin(), seeds.end(), c[1]) != seeds.end())
+      tried.push_back(c[1]);
+  ASSERT_GE(tried.size(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(tried[i], seeds[i]);
+  EXPECT_EQ(std::count(tried.begin(), tried.end(), good), 1);
+}
+
+// The chain seeds: the contact seeds behind each goal face, then, shallow pairs first, one seed per edge of
+// the goal faces, behind both of the edge's faces by kEdgeSeedDepths times the unit.
+TEST(ChainSeeds, BehindTheGoalFacesThenBehindTheirEdges) {
+  const auto& t = *cube();
+  const double unit = t.task.uncertainty.eps_s;
+  const int bottom = bottom_face(t);
+  const Face& b = t.cspace.faces()[static_cast<std::size_t>(bottom)];
+  const std::vector<Vec3> seeds = chain_seeds(t.cspace, goal_atoms(t), unit);
+  ASSERT_EQ(seeds.size(), std::size(kContactSeedDepths) + b.edges.size() * std::size(kEdgeSeedDepths));
+  const std::vector<Vec3> behind = contact_seeds(b, unit);
+  for (std::size_t i = 0; i < behind.size(); ++i) EXPECT_EQ(seeds[i], behind[i]);
+  for (std::size_t k = 0; k < std::size(kEdgeSeedDepths); ++k)
+    for (std::size_t e = 0; e < b.edges.size(); ++e) {
+      const Edge& edge = t.cspace.edges()[static_cast<std::size_t>(b.edges[e]) - t.cspace.faces().size()];
+      ASSERT_EQ(edge.faces.size(), 2u);
+      const Vec3 p = seeds[behind.size() + k * b.edges.size() + e];
+      const Vec3 middle = (edge.a + edge.b) / 2;
+      for (int j = 0; j < 2; ++j) {  // the cube's faces at an edge are perpendicular
+        const Face& f = t.cspace.faces()[static_cast<std::size_t>(edge.faces[static_cast<std::size_t>(j)])];
+        EXPECT_NEAR(f.normal.dot(middle - p), kEdgeSeedDepths[k][j] * unit, 1e-12);
+      }
+    }
+}
+
 }  // namespace
 }  // namespace cmt::planner
