@@ -202,6 +202,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   planner::AtomSimulation simulation(c, u);
   const planner::PlanResult plan = planner::plan_sticking(simulation, c, request);
   nlohmann::json out = {{"task", task->task.name},
+                        {"task_file", cli.task},
                         {"found", plan.found},
                         {"termination", "sticking"},
                         {"start_states", states_json(c, plan.start_states)},

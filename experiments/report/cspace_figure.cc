@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 #include "experiments/report/plot_style.h"
 
@@ -21,6 +22,8 @@ constexpr double kPieceLineShade = 0.75;  // predicted edges and vertices: this 
 constexpr int kInsideDotRadius = 3;       // px: observed ends inside the prediction
 constexpr int kOutsideCrossHalf = 6;      // px: observed ends outside it
 constexpr int kOutsideCrossThickness = 2;
+constexpr int kPlannedCellThickness = 2;  // px: outlines of a planned motion's cell
+constexpr int kPlannedMarkerRadius = 7;   // px: a planned motion's commanded position
 
 struct ViewSpec {
   int u, v;            // coordinate indices shown right and up
@@ -94,6 +97,8 @@ void set_view_ranges(PlotCanvas& canvas, const CSpaceFigureData& d, const ViewSp
           box.add(c + Point2(piece.radius, piece.radius));
         }
       }
+  if (d.planned)  // the commanded positions, not the cells (which reach the planner's domain box)
+    for (const PlannedMotionLayer& m : *d.planned) box.add(project(m.commanded, s));
   // Rollout ends are not included: one that flew off would shrink the scene to a dot; it is clipped instead.
   if (!(box.umin <= box.umax)) box = Box{-1, 1, -1, 1};
   const double margin = kMarginFraction * std::max({box.umax - box.umin, box.vmax - box.vmin, 1e-9});
@@ -211,6 +216,32 @@ cv::Scalar motion_color(int i, int n) {
   return kMotionColors[i % kCycle];
 }
 
+namespace {
+
+// A planned motion's cell as the outline of each piece's projection (the convex hull of its projected
+// vertices; cells are clipped to the plot, they may reach far beyond the scene), and its commanded position.
+void draw_planned(PlotCanvas& canvas, const std::vector<PlannedMotionLayer>& planned, const ViewSpec& s) {
+  const int n = static_cast<int>(planned.size());
+  for (int i = 0; i < n; ++i) {
+    const cv::Scalar color = darker(motion_color(i, n), kPieceLineShade);
+    for (const std::vector<Vec3>& piece : planned[static_cast<std::size_t>(i)].pieces) {
+      std::vector<cv::Point2f> projected, hull;
+      for (const Vec3& v : piece) {
+        const Point2 p = project(v, s);
+        projected.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
+      }
+      if (projected.size() < 2) continue;
+      cv::convexHull(projected, hull);
+      std::vector<Point2> outline(hull.begin(), hull.end());
+      canvas.polyline(outline, true, color, kPlannedCellThickness);
+    }
+    canvas.marker(project(planned[static_cast<std::size_t>(i)].commanded, s), LegendMarker::kDiamond,
+                  kPlannedMarkerRadius, color);
+  }
+}
+
+}  // namespace
+
 PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSize& size) {
   const ViewSpec s = spec(view);
   const std::string unit = unit_name(d.task->task.units);
@@ -225,6 +256,7 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
   if (d.prediction) draw_prediction(canvas, *d.prediction, s);
   for (const Region& g : d.task->task.goal) draw_region_outline(canvas, g, s, kGoalLine);
   draw_region_outline(canvas, d.task->task.start, s, kStartColor);
+  if (d.planned) draw_planned(canvas, *d.planned, s);
 
   // The motions: the prediction's steps when there is one, else the strategy's.
   std::vector<std::string> motions = d.motions;
@@ -268,6 +300,15 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
       canvas.add_legend(
           {"observed end in set, " + motions[i], darker(motion_color(i, n)), LegendMarker::kDot});
   if (any_outside) canvas.add_legend({"observed end outside set", kOutsideRed, LegendMarker::kCross});
+  if (d.planned)
+    for (std::size_t i = 0; i < d.planned->size(); ++i) {
+      const PlannedMotionLayer& m = (*d.planned)[i];
+      const cv::Scalar color =
+          darker(motion_color(static_cast<int>(i), static_cast<int>(d.planned->size())), kPieceLineShade);
+      if (!m.pieces.empty()) canvas.add_legend({"cell of " + m.motion, color, LegendMarker::kLine});
+      canvas.add_legend(
+          {"command, " + m.motion + (m.pieces.empty() ? " (no cell)" : ""), color, LegendMarker::kDiamond});
+    }
   canvas.finish();
   return canvas;
 }

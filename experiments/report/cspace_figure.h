@@ -21,12 +21,21 @@ const char* view_name(View view);  // "front", "top", "side"
 // artificial extrusion of the C-space (docs/cspace.md "Planar tasks").
 std::vector<View> views_for(const Task& task);
 
+// A planned motion's commanded positions (`cmt plan`, docs/planner.md): the convex pieces of its cell (their
+// vertices), drawn as the outlines of their projections, and the commanded position chosen in it.
+struct PlannedMotionLayer {
+  std::string motion;
+  Vec3 commanded = Vec3::Zero();
+  std::vector<std::vector<Vec3>> pieces;  // empty: the motion claims its commanded position alone
+};
+
 struct CSpaceFigureData {
   const LoadedTask* task = nullptr;
   std::vector<std::string> motions;           // the strategy's motion names, in order
   const PredictedSets* prediction = nullptr;  // null: nothing predicted yet
   const std::vector<RolloutRow>* rollouts = nullptr;
   std::string title;  // what the figure is of, e.g. "cube / stick {"friction":0.3}"
+  const std::vector<PlannedMotionLayer>* planned = nullptr;  // a plan's motions, in order (colors as motions)
 };
 
 // Color of motion i of n: the last motion (whose set is judged against the goal) is highlighted.

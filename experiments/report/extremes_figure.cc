@@ -45,7 +45,7 @@ std::optional<PlotCanvas> draw_extremes_figure(const json& run, const std::strin
   for (const json& m : motions) {
     curves.push_back(motion_curve(m));
     names.push_back(m.value("motion", std::string("?")) +
-                    (m.value("claims_cell", false) ? " (cell)" : " (one commanded position)"));
+                    (m.value("claims_cell", false) ? " (cell)" : " (a point)"));
     for (const Point2& p : curves.back()) x_max = std::max(x_max, p.x);
   }
   if (std::all_of(curves.begin(), curves.end(), [](const auto& c) { return c.empty(); })) return std::nullopt;

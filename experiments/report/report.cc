@@ -30,6 +30,7 @@ constexpr const char* kFigurePrefix = "config_";  // every figure and 3-D page t
 constexpr const char* kViewDir = "view";          // 3-D pages (view_page.h) and their shared assets
 constexpr const char* kEdrFigurePrefix = "edr_";  // the EDR outcome figures (write_edr_figures)
 constexpr const char* kExtremesFigurePrefix = "extremes_";  // §6.3.4's experiment (write_extremes_figures)
+constexpr const char* kPlanFigurePrefix = "plan_";          // planned motions' cells (write_plan_figures)
 
 std::string key(const ConfigRow& c, const std::string& column) {
   return column + " (config_id " + std::to_string(c.config_id) + ")";
@@ -49,7 +50,7 @@ void prepare_output(const std::filesystem::path& out_dir) {
       const std::string name = entry.path().filename().string();
       if (entry.is_regular_file() &&
           (name.rfind(kFigurePrefix, 0) == 0 || name.rfind(kEdrFigurePrefix, 0) == 0 ||
-           name.rfind(kExtremesFigurePrefix, 0) == 0) &&
+           name.rfind(kExtremesFigurePrefix, 0) == 0 || name.rfind(kPlanFigurePrefix, 0) == 0) &&
           entry.path().extension() == extension)
         std::filesystem::remove(entry.path());
     }
@@ -314,6 +315,68 @@ std::vector<FigureRef> write_extremes_figures(const std::vector<nlohmann::json>&
   return refs;
 }
 
+// A plan's motions as figure layers: each motion's commanded position and its cell's pieces (vertices).
+std::vector<PlannedMotionLayer> planned_layers(const nlohmann::json& run, int dimension) {
+  std::vector<PlannedMotionLayer> layers;
+  const auto point = [&](const nlohmann::json& p) {
+    if (!p.is_array() || p.size() < 2 || p.size() > 3) throw std::invalid_argument("a point is [x, y, z]");
+    if (dimension == 2 || p.size() == 2) return Vec3(p[0].get<double>(), 0, p.back().get<double>());
+    return Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+  };
+  for (const nlohmann::json& m : run.at("motions")) {
+    PlannedMotionLayer layer;
+    layer.motion = m.at("name").get<std::string>();
+    layer.commanded = point(m.at("commanded"));
+    for (const nlohmann::json& piece : m.value("cpositions", nlohmann::json::array())) {
+      std::vector<Vec3> vertices;
+      for (const nlohmann::json& v : piece.at("vertices")) vertices.push_back(point(v));
+      layer.pieces.push_back(std::move(vertices));
+    }
+    layers.push_back(std::move(layer));
+  }
+  return layers;
+}
+
+// Per plan result with motions and a `task_file` that loads, one figure per view
+// (figures/plan_<i>_<view>.png): the task's C-space with each motion's cell outlined and its commanded
+// position (Buckley's Figs 6.6, 6.8-6.11), added to `figures` with kind "plan". A plan whose task file does
+// not load gets no figures.
+std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& runs,
+                                          const std::filesystem::path& out_dir, nlohmann::json* figures) {
+  std::vector<FigureRef> refs;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const nlohmann::json& run = runs[i];
+    if (!run.contains("task_file") || !run["task_file"].is_string() || !run.contains("motions") ||
+        !run["motions"].is_array() || run["motions"].empty())
+      continue;
+    std::shared_ptr<const LoadedTask> task;
+    std::vector<PlannedMotionLayer> layers;
+    try {
+      task = load_task(run["task_file"].get<std::string>());
+      layers = planned_layers(run, task->task.dimension);
+    } catch (const std::exception&) {  // TaskError, JSON errors: the table still shows the plan
+      continue;
+    }
+    std::vector<std::string> names;
+    for (const PlannedMotionLayer& layer : layers) names.push_back(layer.motion);
+    CSpaceFigureData data{task.get(), names, nullptr, nullptr, task->task.name + " planned", &layers};
+    for (View view : views_for(task->task)) {
+      const PlotCanvas canvas = draw_cspace_view(data, view);
+      const std::string file = std::string(kFigureDir) + "/" + kPlanFigurePrefix + std::to_string(i) + "_" +
+                               view_name(view) + ".png";
+      canvas.save(out_dir / file);
+      refs.push_back({file, task->task.name + ": planned motions' cpositions and commands, " +
+                                view_name(view) + " view"});
+      nlohmann::json entry = canvas.layout();
+      entry["file"] = file;
+      entry["config_id"] = nullptr;
+      entry["kind"] = "plan";
+      figures->push_back(entry);
+    }
+  }
+  return refs;
+}
+
 }  // namespace
 
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
@@ -341,6 +404,7 @@ ReportSummary write_report(const std::filesystem::path& database, const std::fil
   nlohmann::json figures = builder.figures();
   content.edr_figures = write_edr_figures(edr, out_dir, &figures);
   content.extremes_figures = write_extremes_figures(plans, out_dir, &figures);
+  content.plan_figures = write_plan_figures(plans, out_dir, &figures);
   summary.configs = static_cast<int>(db.configs.size());
   summary.figures = static_cast<int>(figures.size());
   summary.index = out_dir / "index.html";

@@ -175,6 +175,8 @@ void md_planner(std::ostream& md, const ReportContent& c) {
   if (c.planner.rows.empty()) return;
   md << "## " << kPlannerTitle << "\n\n" << kPlannerIntro << "\n\n";
   md_table(md, c.planner);
+  for (const FigureRef& f : c.plan_figures) md << "![" << md_escape(f.caption) << "](" << f.file << ")\n";
+  if (!c.plan_figures.empty()) md << "\n";
   if (c.extremes.rows.empty()) return;
   md << kExtremesIntro << "\n\n";
   md_table(md, c.extremes);
@@ -302,6 +304,7 @@ void html_planner(std::ostream& h, const ReportContent& c) {
   h << "<h2 id=\"planner\">" << kPlannerTitle << "</h2>\n<p>" << html_escape(kPlannerIntro)
     << "</p>\n<table class=\"planner\">\n";
   html_rows(h, c.planner);
+  html_figures(h, c.plan_figures);
   if (c.extremes.rows.empty()) return;
   h << "<p>" << html_escape(kExtremesIntro) << "</p>\n<table class=\"extremes\">\n";
   html_rows(h, c.extremes);

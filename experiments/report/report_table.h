@@ -90,6 +90,7 @@ struct ReportContent {
   // with §6.3.4's experiment (`--extremes`), a row per motion in `extremes` and a figure each
   // (extremes_figure.h).
   Table planner;
+  std::vector<FigureRef> plan_figures;  // per plan with a loadable task_file, its cells in each view
   Table extremes;
   std::vector<FigureRef> extremes_figures;
   std::vector<ConfigSection> sections;

@@ -21,12 +21,15 @@
 #include <string>
 #include <vector>
 
+#include "experiments/report/cspace_figure.h"
 #include "experiments/report/edr_figure.h"
 #include "experiments/report/extremes_figure.h"
+#include "experiments/report/plot_style.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
 #include "experiments/report/results_db.h"
 #include "experiments/report/sticking_figure.h"
+#include "models/loaded_task.h"
 #include "tests/experiments/cmt_runner.h"
 
 namespace {
@@ -1162,4 +1165,24 @@ TEST(Report, ExtremePointsTableAndFigureShowEachMotionsRates) {
   EXPECT_EQ(figure_color_at(*canvas, 0.5, 0.75), 0x0072b2);  // on its line from (0, 1)
   EXPECT_NE(figure_color_at(*canvas, 0.5, 0.25), 0x0072b2);
   EXPECT_FALSE(cmt::report::draw_extremes_figure({{"task", "cube"}}, "cube").has_value());
+}
+
+// A plan's cells in the C-space views (Buckley's Figs 6.6, 6.8-6.11): each piece's projection outlined and
+// the commanded position marked, in the motion's color.
+TEST(Report, PlannedMotionsCellIsOutlinedAndItsCommandMarked) {
+  const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml");
+  std::vector<cmt::Vec3> box;
+  for (double x : {-0.5, 0.5})
+    for (double y : {-0.5, 0.5})
+      for (double z : {-1.8, -1.2}) box.push_back(cmt::Vec3(x, y, z));
+  const std::vector<cmt::report::PlannedMotionLayer> layers = {{"planned_1", cmt::Vec3(0, 0, -1.5), {box}}};
+  const cmt::report::CSpaceFigureData data{task.get(), {"planned_1"},  nullptr,
+                                           nullptr,    "cube planned", &layers};
+  const auto canvas = cmt::report::draw_cspace_view(data, cmt::report::View::kFront);
+  const cv::Scalar c = cmt::report::darker(cmt::report::motion_color(0, 1), 0.75);
+  const int color = (static_cast<int>(c[2]) << 16) | (static_cast<int>(c[1]) << 8) | static_cast<int>(c[0]);
+  EXPECT_EQ(figure_color_at(canvas, 0, -1.5), color);      // the commanded position
+  EXPECT_EQ(figure_color_at(canvas, -0.5, -1.4), color);   // the outline's left side (x = -0.5)
+  EXPECT_EQ(figure_color_at(canvas, 0.25, -1.2), color);   // its top (z = -1.2)
+  EXPECT_NE(figure_color_at(canvas, 0.25, -1.35), color);  // inside: not filled
 }
