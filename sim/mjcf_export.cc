@@ -195,17 +195,9 @@ constexpr char kWallRgba[] = "0.8 0.8 0.85 0.15";
 constexpr char kRobotRgba[] = "0.9 0.45 0.2 1";
 constexpr char kReferenceRgba[] = "0.2 0.55 0.9 0.6";
 
-}  // namespace
-
-std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, SceneInfo* info) {
-  const Task& task = loaded.task;
-  const CSpace& cspace = loaded.cspace;
-  const bool cspace_form = !task.physical();
-  const double scale = cspace.scale();
-  const double tolerance = 1e-9 * scale;
-
-  // Reference cube half size h: small against the scene, and at most a quarter of the thinnest part, so that
-  // every C-space box shrunk by h keeps at least half its extent.
+// Reference cube half size h: small against the scene, and at most a quarter of the thinnest part, so that
+// every C-space box shrunk by h keeps at least half its extent.
+double reference_half_size(const Task& task, double scale, bool cspace_form) {
   double thinnest = std::numeric_limits<double>::infinity();
   auto consider = [&](const std::vector<ConvexPart>& parts) {
     for (const ConvexPart& p : parts) {
@@ -221,58 +213,60 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   }
   double h = 0.05 * scale;
   if (std::isfinite(thinnest)) h = std::min(h, 0.25 * thinnest);
+  return h;
+}
 
-  // Convex C-space parts are eroded by the cube; a thin or sharp part may need a smaller cube.
+// Convex C-space parts eroded by the cube of half size *h; a thin or sharp part may need a smaller cube (*h
+// is halved until every part erodes).
+std::vector<std::vector<Vec3>> eroded_cspace_parts(const Task& task, const CSpace& cspace, double tolerance,
+                                                   double* h) {
   std::vector<std::vector<Vec3>> eroded(task.cspace.size());
-  if (cspace_form) {
-    if (cspace.obstacles().size() != task.cspace.size())
-      throw std::logic_error("mjcf_xml: C-obstacles do not match the task's cspace parts");
-    for (int attempt = 0;; ++attempt) {
-      bool ok = true;
-      for (std::size_t i = 0; i < task.cspace.size() && ok; ++i) {
-        if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
-        auto points = erode(cspace.obstacles()[i], h, tolerance);
-        if (points)
-          eroded[i] = std::move(*points);
-        else
-          ok = false;
-      }
-      if (ok) break;
-      if (attempt == 20)
-        throw std::runtime_error(task.source_file + ": a convex cspace part is too thin to export to MuJoCo");
-      h *= 0.5;
+  if (cspace.obstacles().size() != task.cspace.size())
+    throw std::logic_error("mjcf_xml: C-obstacles do not match the task's cspace parts");
+  for (int attempt = 0;; ++attempt) {
+    bool ok = true;
+    for (std::size_t i = 0; i < task.cspace.size() && ok; ++i) {
+      if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
+      auto points = erode(cspace.obstacles()[i], *h, tolerance);
+      if (points)
+        eroded[i] = std::move(*points);
+      else
+        ok = false;
     }
+    if (ok) return eroded;
+    if (attempt == 20)
+      throw std::runtime_error(task.source_file + ": a convex cspace part is too thin to export to MuJoCo");
+    *h *= 0.5;
   }
-  // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
-  // tunnel through at simulated speeds.
-  const double wall = 0.2 * scale;
-  const double s = meters_per_unit(task.units);
-  // The C-space boxes as emitted before shrinking by h: grown into their neighbours (seams), or as given.
-  std::vector<AxisBox> grown;
-  if (cspace_form && options.close_seams) {
-    grown = grow_into_neighbours(task, 2 * h);
-  } else if (cspace_form) {
-    for (const ConvexPart& p : task.cspace) grown.push_back(bounding_box(p));
-  }
-  if (info) *info = SceneInfo{s, h, task.bounds ? wall : 0.0, cspace_form, grown};
+}
 
-  Writer w;
-  w.s = s;
-  std::ostringstream& out = w.out;
+// What a scene is made of, decided before any text is written.
+struct SceneLayout {
+  bool cspace_form = false;
+  double scale = 0, s = 0, h = 0, wall = 0;
+  std::vector<std::vector<Vec3>> eroded;  // convex C-space parts (C-space form)
+  std::vector<AxisBox> grown;             // C-space boxes before shrinking by h (C-space form)
+};
+
+// The file's opening comment: units, scale, form and h.
+void write_header(std::ostream& out, const Task& task, const SceneLayout& l) {
   out << "<!-- cmt export-mjcf: task '" << comment_text(task.name) << "'";
   // The file name only: the scene text must not depend on where the task was loaded from.
   if (!task.source_file.empty())
     out << " (" << comment_text(std::filesystem::path(task.source_file).filename().string()) << ")";
-  out << "\n     units: " << unit_name(task.units) << ", " << num(s)
-      << " m per unit; every length below is in metres (task length x " << num(s) << ").\n"
-      << "     scene scale (C-space diagonal): " << num(scale) << " " << unit_name(task.units) << " = "
-      << num(scale * s) << " m.\n"
-      << "     " << (cspace_form ? "C-space form" : "physical form")
+  out << "\n     units: " << unit_name(task.units) << ", " << num(l.s)
+      << " m per unit; every length below is in metres (task length x " << num(l.s) << ").\n"
+      << "     scene scale (C-space diagonal): " << num(l.scale) << " " << unit_name(task.units) << " = "
+      << num(l.scale * l.s) << " m.\n"
+      << "     " << (l.cspace_form ? "C-space form" : "physical form")
       << ": joints x, y, z (slide) = configuration-space point in metres; reference cube half size h = "
-      << num(h) << " " << unit_name(task.units)
-      << (cspace_form ? "; C-space boxes and walls are shrunk by h." : "; walls shrunk by h.")
+      << num(l.h) << " " << unit_name(task.units)
+      << (l.cspace_form ? "; C-space boxes and walls are shrunk by h." : "; walls shrunk by h.")
       << "\n     See docs/mujoco-scene.md. -->\n";
-  out << "<mujoco model=\"" << task.name << "\">\n";
+}
+
+// <compiler>, <option>, <size>, <custom> and <default>.
+void write_settings(std::ostream& out, const Task& task, const MjcfOptions& options, const SceneLayout& l) {
   out << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
   const double solref = options.solref_timesteps * options.timestep;
   out << "  <option timestep=\"" << num(options.timestep) << "\" integrator=\"Euler\" gravity=\"0 0 0\""
@@ -284,9 +278,9 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   // Contact buffer: a box-box pair yields at most 8 contacts (a mesh pair 1); 3 constraint rows per elliptic
   // contact with condim 3. Capped because MuJoCo 2.2 allocates njmax² numbers per mjData; d->warning reports
   // an overflow.
-  const int robot_geoms = cspace_form ? 1 : static_cast<int>(task.robot.size());
+  const int robot_geoms = l.cspace_form ? 1 : static_cast<int>(task.robot.size());
   const int env_geoms =
-      cspace_form ? static_cast<int>(task.cspace.size()) : static_cast<int>(task.environment.size());
+      l.cspace_form ? static_cast<int>(task.cspace.size()) : static_cast<int>(task.environment.size());
   const int wall_geoms = task.bounds ? 6 : 0;
   const int pairs = robot_geoms * env_geoms + wall_geoms;
   const int nconmax = std::clamp(8 * pairs, 64, 256);
@@ -294,7 +288,7 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
 
   if (options.seam_filter_relative > 0)
     out << "  <custom>\n    <numeric name=\"" << kSeamFilterNumeric << "\" data=\""
-        << num(options.seam_filter_relative * scale * s) << "\"/>\n  </custom>\n";
+        << num(options.seam_filter_relative * l.scale * l.s) << "\"/>\n  </custom>\n";
 
   out << "  <default>\n"
       << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp_dmin)
@@ -302,14 +296,16 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
       << "    <joint type=\"slide\" damping=\"" << num(options.damping)
       << "\" stiffness=\"0\" armature=\"0\"/>\n"
       << "  </default>\n";
+}
 
-  // Mesh assets for convex parts (MuJoCo collides their convex hulls).
+// Mesh assets for convex parts (MuJoCo collides their convex hulls).
+void write_assets(std::ostream& out, const Task& task, const SceneLayout& l) {
   Writer meshes;
-  meshes.s = s;
-  if (cspace_form) {
+  meshes.s = l.s;
+  if (l.cspace_form) {
     for (std::size_t i = 0; i < task.cspace.size(); ++i)
       if (task.cspace[i].shape == ConvexPart::Shape::kConvex)
-        meshes.mesh_asset("cspace" + std::to_string(i), eroded[i]);
+        meshes.mesh_asset("cspace" + std::to_string(i), l.eroded[i]);
   } else {
     for (std::size_t i = 0; i < task.environment.size(); ++i)
       if (task.environment[i].shape == ConvexPart::Shape::kConvex)
@@ -319,30 +315,13 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
         meshes.mesh_asset("robot" + std::to_string(i), task.robot[i].vertices);
   }
   if (!meshes.out.str().empty()) out << "  <asset>\n" << meshes.out.str() << "  </asset>\n";
+}
 
-  out << "  <worldbody>\n";
+// The environment's geoms: the C-space parts (boxes grown into their neighbours, then shrunk by h; convex
+// parts eroded), or the physical environment parts.
+void write_environment(Writer& w, const Task& task, const SceneLayout& l) {
   const char* in2 = "    ";
-  const char* in3 = "      ";
-  if (cspace_form) {
-    for (std::size_t i = 0; i < task.cspace.size(); ++i) {
-      const ConvexPart& p = task.cspace[i];
-      const std::string name = "cspace" + std::to_string(i);
-      if (p.shape == ConvexPart::Shape::kBox) {
-        std::string note = p.key;
-        static const char* const kDir[3][2] = {{"-x", "+x"}, {"-y", "+y"}, {"-z", "+z"}};
-        std::string grown_dirs;
-        for (int k = 0; k < 3; ++k) {
-          if (grown[i].min[k] < p.box.min[k])
-            grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][0];
-          if (grown[i].max[k] > p.box.max[k])
-            grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][1];
-        }
-        if (!grown_dirs.empty()) note += ", grown by 2h into its neighbours (" + grown_dirs + ")";
-        w.box(name, note + ", shrunk by h", grown[i], h, p.friction, 0, kPartBit, kEnvRgba, in2);
-      } else
-        w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
-    }
-  } else {
+  if (!l.cspace_form) {
     for (std::size_t i = 0; i < task.environment.size(); ++i) {
       const ConvexPart& p = task.environment[i];
       const std::string name = "env" + std::to_string(i);
@@ -351,38 +330,66 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
       else
         w.mesh_geom(name, p.key, p.friction, 0, kPartBit, kEnvRgba, in2);
     }
+    return;
   }
-  if (task.bounds) {
-    // Six slabs of thickness `wall` just outside the bounds, overlapping at the corners so that every point
-    // outside the bounds (up to `wall` away) lies in one; shrunk by h because they act on the reference cube.
-    static const char* const kAxis[] = {"x", "y", "z"};
-    const AxisBox& b = *task.bounds;
-    for (int axis = 0; axis < 3; ++axis)
-      for (int side = 0; side < 2; ++side) {
-        AxisBox slab{b.min - Vec3::Constant(wall), b.max + Vec3::Constant(wall)};
-        if (side == 0)
-          slab.max[axis] = b.min[axis];
-        else
-          slab.min[axis] = b.max[axis];
-        // The y walls of a planar task only keep the robot in the extrusion slab; they are not C-space faces
-        // (docs/cspace.md), so they get no friction.
-        const bool phantom = task.dimension == 2 && axis == 1;
-        const std::string name = std::string("wall_") + kAxis[axis] + (side == 0 ? "min" : "max");
-        w.box(name, phantom ? "planar extrusion limit, frictionless" : "bounds", slab, h,
-              phantom ? 0.0 : task.friction, 0, kReferenceBit, kWallRgba, in2);
-      }
+  for (std::size_t i = 0; i < task.cspace.size(); ++i) {
+    const ConvexPart& p = task.cspace[i];
+    const std::string name = "cspace" + std::to_string(i);
+    if (p.shape != ConvexPart::Shape::kBox) {
+      w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
+      continue;
+    }
+    std::string note = p.key;
+    static const char* const kDir[3][2] = {{"-x", "+x"}, {"-y", "+y"}, {"-z", "+z"}};
+    std::string grown_dirs;
+    for (int k = 0; k < 3; ++k) {
+      if (l.grown[i].min[k] < p.box.min[k])
+        grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][0];
+      if (l.grown[i].max[k] > p.box.max[k])
+        grown_dirs += std::string(grown_dirs.empty() ? "" : " ") + kDir[k][1];
+    }
+    if (!grown_dirs.empty()) note += ", grown by 2h into its neighbours (" + grown_dirs + ")";
+    w.box(name, note + ", shrunk by h", l.grown[i], l.h, p.friction, 0, kPartBit, kEnvRgba, in2);
   }
+}
 
+// Six slabs of thickness `wall` just outside the bounds, overlapping at the corners so that every point
+// outside the bounds (up to `wall` away) lies in one; shrunk by h because they act on the reference cube.
+void write_walls(Writer& w, const Task& task, const SceneLayout& l) {
+  if (!task.bounds) return;
+  static const char* const kAxis[] = {"x", "y", "z"};
+  const AxisBox& b = *task.bounds;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      AxisBox slab{b.min - Vec3::Constant(l.wall), b.max + Vec3::Constant(l.wall)};
+      if (side == 0)
+        slab.max[axis] = b.min[axis];
+      else
+        slab.min[axis] = b.max[axis];
+      // The y walls of a planar task only keep the robot in the extrusion slab; they are not C-space faces
+      // (docs/cspace.md), so they get no friction.
+      const bool phantom = task.dimension == 2 && axis == 1;
+      const std::string name = std::string("wall_") + kAxis[axis] + (side == 0 ? "min" : "max");
+      w.box(name, phantom ? "planar extrusion limit, frictionless" : "bounds", slab, l.h,
+            phantom ? 0.0 : task.friction, 0, kReferenceBit, kWallRgba, "    ");
+    }
+}
+
+// The robot body: three slide joints, its inertia and its geoms (the reference cube, or the robot's parts
+// and, with bounds, the reference cube that meets the walls).
+void write_robot(Writer& w, const Task& task, const MjcfOptions& options, const SceneLayout& l) {
+  std::ostringstream& out = w.out;
+  const char* in3 = "      ";
   out << "    <body name=\"robot\">\n"
       << "      <joint name=\"x\" axis=\"1 0 0\"/>\n"
       << "      <joint name=\"y\" axis=\"0 1 0\"/>\n"
       << "      <joint name=\"z\" axis=\"0 0 1\"/>\n";
   // Only translations exist, so the rotational inertia is never used; MuJoCo still wants it positive.
-  const double inertia = options.robot_mass * (0.1 * scale * s) * (0.1 * scale * s);
+  const double inertia = options.robot_mass * (0.1 * l.scale * l.s) * (0.1 * l.scale * l.s);
   out << "      <inertial pos=\"0 0 0\" mass=\"" << num(options.robot_mass) << "\" diaginertia=\""
       << num(inertia) << " " << num(inertia) << " " << num(inertia) << "\"/>\n";
-  const AxisBox cube{Vec3::Constant(-h), Vec3::Constant(h)};
-  if (cspace_form) {
+  const AxisBox cube{Vec3::Constant(-l.h), Vec3::Constant(l.h)};
+  if (l.cspace_form) {
     w.box("robot_cube", "the C-space point, thickened to a cube of half size h", cube, 0, 0,
           kPartBit | kReferenceBit, 0, kRobotRgba, in3);
   } else {
@@ -399,15 +406,57 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
             "reference point (frame origin), thickened to a cube of half size h; meets the walls only", cube,
             0, 0, kReferenceBit, 0, kReferenceRgba, in3);
   }
-  out << "    </body>\n  </worldbody>\n";
+  out << "    </body>\n";
+}
 
-  // The start region's centroid (on the contact surface) as a keyframe, so viewers open at a valid state.
-  if (!task.start.points.empty()) {
-    Vec3 c = Vec3::Zero();
-    for (const Vec3& p : task.start.points) c += p;
-    c /= static_cast<double>(task.start.points.size());
-    out << "  <keyframe>\n    <key name=\"start\" qpos=\"" << vec(c * s) << "\"/>\n  </keyframe>\n";
+// The start region's centroid (on the contact surface) as a keyframe, so viewers open at a valid state.
+void write_start_key(std::ostream& out, const Task& task, double s) {
+  if (task.start.points.empty()) return;
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : task.start.points) c += p;
+  c /= static_cast<double>(task.start.points.size());
+  out << "  <keyframe>\n    <key name=\"start\" qpos=\"" << vec(c * s) << "\"/>\n  </keyframe>\n";
+}
+
+SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
+  const Task& task = loaded.task;
+  SceneLayout l;
+  l.cspace_form = !task.physical();
+  l.scale = loaded.cspace.scale();
+  l.h = reference_half_size(task, l.scale, l.cspace_form);
+  if (l.cspace_form) l.eroded = eroded_cspace_parts(task, loaded.cspace, 1e-9 * l.scale, &l.h);
+  // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
+  // tunnel through at simulated speeds.
+  l.wall = 0.2 * l.scale;
+  l.s = meters_per_unit(task.units);
+  // The C-space boxes as emitted before shrinking by h: grown into their neighbours (seams), or as given.
+  if (l.cspace_form && options.close_seams) {
+    l.grown = grow_into_neighbours(task, 2 * l.h);
+  } else if (l.cspace_form) {
+    for (const ConvexPart& p : task.cspace) l.grown.push_back(bounding_box(p));
   }
+  return l;
+}
+
+}  // namespace
+
+std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, SceneInfo* info) {
+  const Task& task = loaded.task;
+  const SceneLayout l = scene_layout(loaded, options);
+  if (info) *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown};
+  Writer w;
+  w.s = l.s;
+  std::ostringstream& out = w.out;
+  write_header(out, task, l);
+  out << "<mujoco model=\"" << task.name << "\">\n";
+  write_settings(out, task, options, l);
+  write_assets(out, task, l);
+  out << "  <worldbody>\n";
+  write_environment(w, task, l);
+  write_walls(w, task, l);
+  write_robot(w, task, options, l);
+  out << "  </worldbody>\n";
+  write_start_key(out, task, l.s);
   out << "</mujoco>\n";
   return out.str();
 }

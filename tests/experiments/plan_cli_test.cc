@@ -99,11 +99,32 @@ TEST(CmtPlan, HoleHasATwoMotionPlanFromTheStartProjectionThatTheRolloutsConfirm)
   EXPECT_GE(j["chain_projections"].get<int>(), 1);
   EXPECT_EQ(j["steps"][1]["state"], j["steps"][0]["heads"][0]);
   EXPECT_EQ(j["steps"][1]["targets"], nlohmann::json::array({"f8"}));  // the bottom face
-  EXPECT_LT(j["motions"][1]["commanded"][2].get<double>(), -2.0);        // beneath the bottom's plane
+  EXPECT_LT(j["motions"][1]["commanded"][2].get<double>(), -2.0);      // beneath the bottom's plane
   EXPECT_TRUE(j["decision_free"].get<bool>());
   EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
   EXPECT_EQ(j["check"]["rollouts"], 60);
   EXPECT_EQ(j["check"]["successes"], 60);
+  EXPECT_EQ(j["check"]["outside"], 0);
+}
+
+// §6.3.5, the double hole (the T-slot): a two-motion decision-free plan. The first motion, from the start
+// projection, stops on the first hole's far wall; from there the simulation's cells reach no goal, and the
+// second motion is a chain projection at a seed behind the goal face's floor edge. The chain is verified and
+// every rollout reaches the goal.
+TEST(CmtPlan, TslotHasATwoMotionPlanThroughAChainProjection) {
+  const Result r = run("plan " + task("tslot") + " --check 20 --seed 7 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["found"].get<bool>()) << r.out;
+  ASSERT_EQ(j["motions"].size(), 2u);
+  EXPECT_EQ(j["motions"][0]["source"], "start projection");
+  EXPECT_EQ(j["motions"][1]["source"], "chain projection");
+  EXPECT_EQ(j["steps"][1]["state"], j["steps"][0]["heads"][0]);
+  EXPECT_LT(j["motions"][1]["commanded"][2].get<double>(), -5.0);  // below the second hole's floor
+  EXPECT_GT(j["motions"][1]["commanded"][1].get<double>(), 3.0);   // beyond the goal face
+  EXPECT_TRUE(j["decision_free"].get<bool>());
+  EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
+  EXPECT_EQ(j["check"]["successes"], 20);
   EXPECT_EQ(j["check"]["outside"], 0);
 }
 
