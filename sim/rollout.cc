@@ -184,6 +184,8 @@ struct RolloutRunner::Impl {
   std::vector<Vec3>* applied_sink = nullptr;
 
   explicit Impl(std::shared_ptr<const RolloutScene> s) : scene(std::move(s)), data(scene->model()) {}
+  MotionOutcome run_motion(const Motion& motion, int node_id, int motion_index, double time_before,
+                           ErrorSource& errors, RolloutOutcome* out);
 
   Vec3 position() const {
     const mjData* d = data.get();
@@ -309,12 +311,89 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, 
   return run(strategy, errors, index);
 }
 
+// One motion of a rollout from the robot's current state: the servo loop until the termination monitor
+// stops it, the controller stops on force, the simulation turns unstable or the time limit passes. Records
+// trajectory samples (the rollout's time so far is `time_before`) into out->trajectory.
+MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id, int motion_index,
+                                              double time_before, ErrorSource& errors, RolloutOutcome* out) {
+  Impl& s = *this;
+  const RolloutScene& scene = *s.scene;
+  const SimOptions& options = scene.options();
+  const double dt = scene.timestep();
+  MotionOutcome mo;
+  mo.motion = motion.name;
+  mo.node = node_id;
+  errors.begin_motion(node_id);
+  const Vec3 start = s.position();
+  auto controller =
+      make_controller(motion, options.form, scene.controller_params(), start + errors.sensing_offset(),
+                      [&] { return errors.positioning_error(); });
+  auto spec_it = options.terminations.find(motion.name);
+  TerminationMonitor monitor(spec_it == options.terminations.end() ? TerminationSpec{} : spec_it->second,
+                             controller->reference_speed(), controller->guard_force(), dt);
+  const long limit = std::lround(scene.timeout(motion, start) / dt);
+  std::optional<Termination> end;
+  long step = 0;
+  for (; step < limit && !end; ++step) {
+    const double t = static_cast<double>(step) * dt;
+    errors.advance(t);
+    Sensed sensed;
+    sensed.time = t;
+    sensed.position = s.position() + errors.sensing_offset();
+    sensed.velocity = s.velocity();
+    sensed.force = errors.force().apply(s.force);
+    end = monitor.update(sensed, controller->plan_complete());
+    if (end) break;
+    const ServoCommand c = controller->update(sensed);
+    if (controller->stopped_by_force()) {
+      end = Termination::kSticking;
+      break;
+    }
+    const bool stable = s.step(errors.velocity().apply(c.drive) + c.feedback);
+    mo.max_penetration = std::max(mo.max_penetration, s.penetration);
+    if (!stable) {
+      end = Termination::kUnstable;
+      ++step;
+      break;
+    }
+    if (options.record_trajectory && step % options.trajectory_stride == 0)
+      out->trajectory.push_back(
+          {time_before + t + dt, motion_index, s.position(), sensed.position, s.data.get()->ncon > 0});
+  }
+  mo.steps = step;
+  mo.sim_time = static_cast<double>(step) * dt;
+  mo.termination = end.value_or(Termination::kNone);
+  mo.end = s.position();
+  mo.atom = scene.task().cspace.nearest_atom(mo.end, scene.atom_tolerance());
+  mo.contact_force = s.force;
+  mo.velocity_switches = errors.switches();
+  mo.replans = controller->replans();
+  return mo;
+}
+
+namespace {
+
+// The node after a terminated motion: its successor, or (Buckley §4.2) the branch one reading of the sensors
+// at rest decides (mo->branch; -1 when no branch passes, and out->no_branch), or -1 at the end.
+int next_node(const StrategyNode& node, int node_id, const Vec3& position, const Vec3& force,
+              ErrorSource& errors, MotionOutcome* mo, RolloutOutcome* out) {
+  if (node.next >= 0) return node.next;
+  if (node.branches.empty()) return -1;
+  const ReadingErrors reading = errors.reading(node_id);
+  mo->branch = choose_branch(node, position + reading.sensing_offset, reading.force.apply(force));
+  if (mo->branch < 0) {
+    out->no_branch = true;
+    return -1;
+  }
+  return node.branches[static_cast<std::size_t>(mo->branch)].first;
+}
+
+}  // namespace
+
 RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors, int index) {
   Impl& s = *impl_;
   const RolloutScene& scene = *s.scene;
   const LoadedTask& lt = scene.task();
-  const SimOptions& options = scene.options();
-  const double dt = scene.timestep();
 
   RolloutOutcome out;
   out.index = index;
@@ -330,56 +409,9 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors,
     if (motion == nullptr)
       throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" + node.motion +
                                   "'");
-    MotionOutcome mo;
-    mo.motion = motion->name;
-    mo.node = node_id;
-    errors.begin_motion(node_id);
-    const Vec3 start = s.position();
-    auto controller =
-        make_controller(*motion, options.form, scene.controller_params(), start + errors.sensing_offset(),
-                        [&] { return errors.positioning_error(); });
-    auto spec_it = options.terminations.find(motion->name);
-    TerminationMonitor monitor(spec_it == options.terminations.end() ? TerminationSpec{} : spec_it->second,
-                               controller->reference_speed(), controller->guard_force(), dt);
-    const long limit = std::lround(scene.timeout(*motion, start) / dt);
-    std::optional<Termination> end;
-    long step = 0;
-    for (; step < limit && !end; ++step) {
-      const double t = static_cast<double>(step) * dt;
-      errors.advance(t);
-      Sensed sensed;
-      sensed.time = t;
-      sensed.position = s.position() + errors.sensing_offset();
-      sensed.velocity = s.velocity();
-      sensed.force = errors.force().apply(s.force);
-      end = monitor.update(sensed, controller->plan_complete());
-      if (end) break;
-      const ServoCommand c = controller->update(sensed);
-      if (controller->stopped_by_force()) {
-        end = Termination::kSticking;
-        break;
-      }
-      const bool stable = s.step(errors.velocity().apply(c.drive) + c.feedback);
-      mo.max_penetration = std::max(mo.max_penetration, s.penetration);
-      if (!stable) {
-        end = Termination::kUnstable;
-        ++step;
-        break;
-      }
-      if (options.record_trajectory && step % options.trajectory_stride == 0)
-        out.trajectory.push_back(
-            {rollout_time + t + dt, motion_index, s.position(), sensed.position, s.data.get()->ncon > 0});
-    }
-    total_steps_ += step;
-    mo.steps = step;
-    mo.sim_time = static_cast<double>(step) * dt;
+    MotionOutcome mo = s.run_motion(*motion, node_id, motion_index, rollout_time, errors, &out);
+    total_steps_ += mo.steps;
     rollout_time += mo.sim_time;
-    mo.termination = end.value_or(Termination::kNone);
-    mo.end = s.position();
-    mo.atom = lt.cspace.nearest_atom(mo.end, scene.atom_tolerance());
-    mo.contact_force = s.force;
-    mo.velocity_switches = errors.switches();
-    mo.replans = controller->replans();
     if (mo.termination == Termination::kUnstable) {
       out.unstable = true;
       out.unstable_reason = "motion '" + motion->name + "': " + s.failure;
@@ -389,19 +421,7 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors,
       all_terminated = false;
       break;  // a motion that did not terminate ends the strategy (a real robot would stop with an error)
     }
-    if (node.next >= 0) {
-      node_id = node.next;
-    } else if (!node.branches.empty()) {
-      // Buckley §4.2: one reading of the sensors at rest decides the branch.
-      const ReadingErrors reading = errors.reading(node_id);
-      const Vec3 sensed_position = s.position() + reading.sensing_offset;
-      const Vec3 sensed_force = reading.force.apply(s.force);
-      mo.branch = choose_branch(node, sensed_position, sensed_force);
-      if (mo.branch < 0) out.no_branch = true;
-      node_id = mo.branch < 0 ? -1 : node.branches[static_cast<std::size_t>(mo.branch)].first;
-    } else {
-      node_id = -1;
-    }
+    node_id = next_node(node, node_id, s.position(), s.force, errors, &mo, &out);
     out.motions.push_back(mo);
   }
   out.end = s.position();
