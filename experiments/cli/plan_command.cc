@@ -5,6 +5,7 @@
 // (docs/planner.md).
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -202,7 +203,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   planner::AtomSimulation simulation(c, u);
   const planner::PlanResult plan = planner::plan_sticking(simulation, c, request);
   nlohmann::json out = {{"task", task->task.name},
-                        {"task_file", cli.task},
+                        {"task_file", std::filesystem::absolute(cli.task).string()},
                         {"found", plan.found},
                         {"termination", "sticking"},
                         {"start_states", states_json(c, plan.start_states)},

@@ -90,7 +90,9 @@ std::vector<Vec3> cell_vertices(const PlannedMotionCell& cell) {
 
 std::vector<Vec3> grown_vertices(const PlannedMotionCell& cell, double distance) {
   const AxisBox box = cell.cells.empty() ? AxisBox{cell.commanded, cell.commanded} : cell.cells.box();
-  const AxisBox wide = grown_box(box, 2 * distance);
+  // Wide enough for the grown corners of all but very acute pieces (a corner of angle theta moves out by
+  // distance / sin(theta / 2)).
+  const AxisBox wide = grown_box(box, 2 * distance + (box.max - box.min).norm());
   const double tolerance = kSameVertexRelative * (wide.max - wide.min).norm();
   const std::vector<std::vector<HalfSpace>> polyhedra = claimed_polyhedra(cell);
   std::vector<std::vector<HalfSpace>> grown;
@@ -162,7 +164,7 @@ nlohmann::json trials_json(const LoadedTask& task, const std::vector<PointTrial>
 bool vertices_all_succeed(const std::vector<MotionExtremes>& motions) {
   return std::all_of(motions.begin(), motions.end(), [](const MotionExtremes& m) {
     return std::all_of(m.vertices.begin(), m.vertices.end(),
-                       [](const PointTrial& t) { return t.successes == t.rollouts; });
+                       [](const PointTrial& t) { return t.successes == t.rollouts && t.outside == 0; });
   });
 }
 

@@ -19,7 +19,7 @@
 namespace cmt {
 
 // One motion of the planned strategy and the commanded positions the planner claims for it: a cell, or (a
-// start projection's motion, which claims no cell) its one commanded position.
+// start or chain projection's motion, which claims no cell) its one commanded position.
 struct PlannedMotionCell {
   std::string motion;           // the motion's name in the planned task
   Vec3 commanded;               // as planned
@@ -37,8 +37,9 @@ struct ExtremePointOptions {
 // repeats.
 std::vector<Vec3> cell_vertices(const PlannedMotionCell& cell);
 // The vertices of each polyhedron grown by `distance` (its half-spaces' offsets increased by it; a motion
-// that claims one point grows into the cube of half-side `distance` about it), less those inside another
-// grown polyhedron of the motion: every point returned is at least `distance` from every polyhedron.
+// that claims one point grows into the cube of half-side `distance` about it), less those strictly inside
+// another grown polyhedron of the motion: every point returned is at least `distance` from every polyhedron
+// (points on a seam between two grown pieces are kept, though they are not corners of the grown union).
 std::vector<Vec3> grown_vertices(const PlannedMotionCell& cell, double distance);
 
 struct PointTrial {
@@ -55,7 +56,7 @@ struct GrownTrials {
 
 struct MotionExtremes {
   std::string motion;
-  bool claims_cell = false;  // false: a start projection's single commanded position
+  bool claims_cell = false;  // false: a projection's single commanded position
   std::vector<PointTrial> vertices;
   std::vector<GrownTrials> grown;
 };
@@ -71,7 +72,7 @@ std::vector<MotionExtremes> run_extreme_points(std::shared_ptr<const LoadedTask>
 // totals (rollouts, successes, rate).
 nlohmann::json extreme_points_json(const LoadedTask& task, const std::vector<MotionExtremes>& motions,
                                    const ExtremePointOptions& options);
-// Every rollout commanded at a vertex reached the goal.
+// Every rollout commanded at a vertex reached the goal, and none ended outside the verifier's prediction.
 bool vertices_all_succeed(const std::vector<MotionExtremes>& motions);
 
 }  // namespace cmt

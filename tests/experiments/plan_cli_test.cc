@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "tests/experiments/cmt_runner.h"
@@ -59,6 +60,8 @@ TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
   EXPECT_LT(j["motions"][0]["commanded"][2].get<double>(), -1.0);  // behind the bottom's plane
   EXPECT_GT(j["motions"][0]["depth"].get<double>(), 0.0);
   EXPECT_FALSE(j["motions"][0]["cpositions"].empty());
+  EXPECT_TRUE(std::filesystem::path(j["task_file"].get<std::string>()).is_absolute());  // for the report
+  EXPECT_TRUE(std::filesystem::equivalent(j["task_file"].get<std::string>(), task("cube")));
   EXPECT_EQ(j["steps"][0]["state"], nlohmann::json::array({"e4"}));    // the top edge y = -1, z = 1
   EXPECT_EQ(j["steps"][0]["targets"], nlohmann::json::array({"f2"}));  // the bottom face
   EXPECT_TRUE(j["decision_free"].get<bool>());

@@ -50,9 +50,9 @@ class Search {
         add_chain_projection_arc(out);
         continue;  // the refuted arc changed: evaluate again
       }
-      // One state expanded and one start projection arc added per round, so the projections (a verifier
-      // call each) are spread over the search rather than paid for before it. A round that expands the start
-      // is evaluated before any projection is paid for.
+      // One state expanded, one start projection arc and one continuation added per round, so the
+      // projections (verifier calls) are spread over the search rather than paid for before it. A round
+      // that expands the start is evaluated before any projection is paid for.
       const bool may_project = start_expanded();
       const auto next = pick();
       const bool expands = next && out.expanded < req_.max_expansions;

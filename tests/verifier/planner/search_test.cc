@@ -424,6 +424,34 @@ TEST(CubePlanChainProjection, AStartProjectionsHeadContinuesAtTheSeedWhoseChainR
   EXPECT_EQ(std::count(tried.begin(), tried.end(), good), 1);
 }
 
+// Turned off, no continuation is made: the same script finds no plan through the good seed.
+TEST(CubePlanChainProjection, NoneAreMadeWhenTurnedOff) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  r.chain_projections = false;
+  r.max_expansions = 10;
+  r.max_chain_checks = 20;
+  const int bottom = bottom_face(t), side = side_face(t);
+  const Vec3 good = chain_seeds(t.cspace, r.goal_atom, r.eps_s)[5];
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return std::vector<int>{side};
+  };
+  int through_good = 0;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    if (commanded.size() == 2 && commanded[1] == good) ++through_good;
+    if (commanded.size() < 2 || commanded[1] != good) return ChainVerdict{false, {std::nullopt}};
+    return ChainVerdict{true, {std::vector<int>{side}, std::vector<int>{bottom}}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  EXPECT_FALSE(plan.found);
+  EXPECT_EQ(plan.chain_projections, 0);
+  EXPECT_EQ(through_good, 0);
+  EXPECT_FALSE(asked.empty());  // the start projections still ran
+}
+
 // The chain seeds: the contact seeds behind each goal face, then, shallow pairs first, one seed per edge of
 // the goal faces, behind both of the edge's faces by kEdgeSeedDepths times the unit.
 TEST(ChainSeeds, BehindTheGoalFacesThenBehindTheirEdges) {
