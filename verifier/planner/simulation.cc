@@ -205,27 +205,33 @@ AxisBox planner_domain(const CSpace& cspace) {
 }
 
 AtomSimulation::AtomSimulation(const CSpace& cspace, const Uncertainty& u)
-    : cspace_(cspace), u_(u), domain_(planner_domain(cspace)), eps_t_(eps_t(u)), eps_o_(eps_o(u)) {}
+    : cspace_(cspace),
+      u_(u),
+      domain_(planner_domain(cspace)),
+      eps_t_(eps_t(u)),
+      eps_o_(eps_o(u)),
+      weak_stick_(static_cast<std::size_t>(cspace.atom_count())),
+      strong_stick_(static_cast<std::size_t>(cspace.atom_count())),
+      reach_(static_cast<std::size_t>(cspace.atom_count()) * static_cast<std::size_t>(cspace.atom_count())) {}
 
 namespace {
 
-// The set cached under `key`, made on first use.
-template <class Key, class Make>
-const CPositionSet& cached(std::map<Key, CPositionSet>& cache, const Key& key, const Make& make) {
-  auto it = cache.find(key);
-  if (it == cache.end()) it = cache.emplace(key, make()).first;
-  return it->second;
+// The set cached in `slot`, made on first use.
+template <class Make>
+const CPositionSet& cached(std::optional<CPositionSet>& slot, const Make& make) {
+  if (!slot) slot.emplace(make());
+  return *slot;
 }
 
 }  // namespace
 
 const CPositionSet& AtomSimulation::weak_sticking(int atom) {
-  return cached(weak_stick_, atom,
+  return cached(weak_stick_.at(static_cast<std::size_t>(atom)),
                 [&] { return CPositionSet::of(spring_weak_region(cspace_, atom, u_), domain_); });
 }
 
 const CPositionSet& AtomSimulation::strong_sticking(int atom) {
-  return cached(strong_stick_, atom,
+  return cached(strong_stick_.at(static_cast<std::size_t>(atom)),
                 [&] { return CPositionSet::of_union(spring_strong_regions(cspace_, atom, u_), domain_); });
 }
 
@@ -339,7 +345,8 @@ CPositionSet AtomSimulation::flight_reach(int from, int to) const {
 }
 
 const CPositionSet& AtomSimulation::weak_reach(int from, int to) {
-  return cached(reach_, std::pair{from, to}, [&] {
+  const std::size_t n = static_cast<std::size_t>(cspace_.atom_count());
+  return cached(reach_.at(static_cast<std::size_t>(from) * n + static_cast<std::size_t>(to)), [&] {
     return atoms_connected(cspace_, from, to) ? connected_reach(from, to) : flight_reach(from, to);
   });
 }

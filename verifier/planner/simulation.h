@@ -21,7 +21,6 @@
 #pragma once
 
 #include <functional>
-#include <map>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -78,8 +77,9 @@ class AtomSimulation {
   Uncertainty u_;
   AxisBox domain_;
   double eps_t_ = 0, eps_o_ = 0;
-  std::map<int, CPositionSet> weak_stick_, strong_stick_;
-  std::map<std::pair<int, int>, CPositionSet> reach_;
+  // Made on first use: per atom, and per (from, to) at from x atom_count + to. Never resized, so the
+  // references handed out stay valid.
+  std::vector<std::optional<CPositionSet>> weak_stick_, strong_stick_, reach_;
   std::optional<CPositionSet> free_rest_;
 };
 
