@@ -1186,3 +1186,66 @@ TEST(Report, PlannedMotionsCellIsOutlinedAndItsCommandMarked) {
   EXPECT_EQ(figure_color_at(canvas, 0.25, -1.2), color);   // its top (z = -1.2)
   EXPECT_NE(figure_color_at(canvas, 0.25, -1.35), color);  // inside: not filled
 }
+
+// `cmt report --plan`: a plan result whose task file loads gets its cells in the three C-space views, one
+// with `extremes` its success-rate figure, each referenced by the documents and listed in figures.json; a
+// later report without plans removes them.
+TEST(Report, PlanResultsAddCellViewsAndTheExtremesFigureAndARerunRemovesThem) {
+  const fs::path base = fs::path(testing::TempDir()) / "cmt_report_test_plan";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  write_results_db(base / "results.sqlite");
+  const json trials = {
+      {"points", json::array({json::object()})}, {"rollouts", 10}, {"successes", 10}, {"rate", 1.0}};
+  const json plan = {{"task", "cube"},
+                     {"task_file", std::string(CMT_SOURCE_DIR) + "/models/tasks/cube.yaml"},
+                     {"found", true},
+                     {"termination", "sticking"},
+                     {"strategy", {"planned_1"}},
+                     {"motions",
+                      {{{"name", "planned_1"},
+                        {"commanded", {0.0, 0.0, -1.5}},
+                        {"depth", 0.1},
+                        {"cpositions",
+                         {{{"halfspaces", json::array()},
+                           {"vertices",
+                            {{-0.5, -0.5, -1.8},
+                             {0.5, -0.5, -1.8},
+                             {0.5, 0.5, -1.8},
+                             {-0.5, 0.5, -1.8},
+                             {-0.5, -0.5, -1.2},
+                             {0.5, -0.5, -1.2},
+                             {0.5, 0.5, -1.2},
+                             {-0.5, 0.5, -1.2}}}}}}}}},
+                     {"extremes",
+                      {{"motions",
+                        {{{"motion", "planned_1"},
+                          {"claims_cell", true},
+                          {"vertices", trials},
+                          {"grown", json::array()}}}}}},
+                     {"seconds", 1.0}};
+  {
+    std::ofstream out(base / "plan.json");
+    out << plan.dump();
+  }
+  const fs::path dir = base / "report";
+  const std::string report = "report " + (base / "results.sqlite").string() + " -o " + dir.string();
+  ASSERT_EQ(cmt::test::run(report + " --plan " + (base / "plan.json").string()).status, 0);
+  const std::string md = read_file(dir / "report.md");
+  for (const std::string png : {"figures/plan_0_front.png", "figures/plan_0_top.png",
+                                "figures/plan_0_side.png", "figures/extremes_0.png"}) {
+    EXPECT_TRUE(fs::exists(dir / png)) << png;
+    EXPECT_NE(md.find("(" + png + ")"), std::string::npos) << png;
+  }
+  const json figures = json::parse(read_file(dir / "figures.json"));
+  int plan_figures = 0, extremes_figures = 0;
+  for (const json& f : figures["figures"]) {
+    plan_figures += f["kind"] == "plan";
+    extremes_figures += f["kind"] == "extremes";
+  }
+  EXPECT_EQ(plan_figures, 3);
+  EXPECT_EQ(extremes_figures, 1);
+  ASSERT_EQ(cmt::test::run(report).status, 0);
+  EXPECT_FALSE(fs::exists(dir / "figures/plan_0_front.png"));
+  EXPECT_FALSE(fs::exists(dir / "figures/extremes_0.png"));
+}
