@@ -457,7 +457,7 @@ class Search {
   }
 
   // The unexpanded non-goal state nearest the goal among those reachable from the start in fewer than
-  // max_motions arcs.
+  // max_motions arcs (start projections and their continuations followed from the root only).
   std::optional<State> pick() const {
     std::optional<State> best;
     double best_distance = std::numeric_limits<double>::infinity();
@@ -479,7 +479,8 @@ class Search {
         continue;
       }
       for (const GraphArc& arc : it->second) {
-        if (arc.rejected) continue;
+        // A start projection (and so its continuations) holds at the root only, as in success().
+        if (arc.rejected || (arc.from_start_projection && depth != 0)) continue;
         for (const State& h : arc.heads) queue.push_back({h, depth + 1});
         for (const GraphArc& next : arc.continuations)
           if (!next.rejected)
