@@ -19,6 +19,15 @@ void add_unique(std::vector<Vec3>& points, const Vec3& p, double tolerance) {
     points.push_back(p);
 }
 
+AxisBox vertex_box(const std::vector<Vec3>& vertices) {
+  AxisBox box{vertices.front(), vertices.front()};
+  for (const Vec3& v : vertices) {
+    box.min = box.min.cwiseMin(v);
+    box.max = box.max.cwiseMax(v);
+  }
+  return box;
+}
+
 AxisBox grown_box(const AxisBox& box, double distance) {
   const Vec3 d = Vec3::Constant(distance);
   return {box.min - d, box.max + d};
@@ -89,16 +98,18 @@ std::vector<Vec3> cell_vertices(const PlannedMotionCell& cell) {
 }
 
 std::vector<Vec3> grown_vertices(const PlannedMotionCell& cell, double distance) {
-  const AxisBox box = cell.cells.empty() ? AxisBox{cell.commanded, cell.commanded} : cell.cells.box();
-  // Wide enough for the grown corners of all but very acute pieces (a corner of angle theta moves out by
-  // distance / sin(theta / 2)).
-  const AxisBox wide = grown_box(box, 2 * distance + (box.max - box.min).norm());
-  const double tolerance = kSameVertexRelative * (wide.max - wide.min).norm();
   const std::vector<std::vector<HalfSpace>> polyhedra = claimed_polyhedra(cell);
   std::vector<std::vector<HalfSpace>> grown;
   for (const auto& halfspaces : polyhedra) grown.push_back(moved_out(halfspaces, distance));
   std::vector<Vec3> out;
   for (std::size_t i = 0; i < grown.size(); ++i) {
+    // Clipped to the piece's own box grown wide enough for the grown corners of all but very acute pieces
+    // (a corner of angle theta moves out by distance / sin(theta / 2)); a small box keeps the clipping's
+    // relative slack small.
+    const AxisBox box = cell.cells.empty() ? AxisBox{cell.commanded, cell.commanded}
+                                           : vertex_box(cell.cells.pieces()[i].vertices);
+    const AxisBox wide = grown_box(box, 2 * distance + (box.max - box.min).norm());
+    const double tolerance = kSameVertexRelative * (wide.max - wide.min).norm();
     const planner::CPositionSet piece = planner::CPositionSet::convex(grown[i], wide);
     for (const planner::ConvexPiece& p : piece.pieces())
       for (const Vec3& v : p.vertices) {
