@@ -267,6 +267,20 @@ std::vector<nlohmann::json> read_plan_runs(const std::vector<std::filesystem::pa
   return read_json_results(files, {"found", "termination"}, "planner result", "`cmt plan --json` result");
 }
 
+// Saves a figure that belongs to no configuration (`file` relative to out_dir), lists it in `refs` with its
+// caption and adds its layout to `figures` (figures.json) with `kind`.
+void save_report_figure(const PlotCanvas& canvas, const std::filesystem::path& out_dir,
+                        const std::string& file, const std::string& caption, const char* kind,
+                        std::vector<FigureRef>& refs, nlohmann::json* figures) {
+  canvas.save(out_dir / file);
+  refs.push_back({file, caption});
+  nlohmann::json entry = canvas.layout();
+  entry["file"] = file;
+  entry["config_id"] = nullptr;  // not a configuration's
+  entry["kind"] = kind;
+  figures->push_back(entry);
+}
+
 // Per EDR result with a physics check, its outcomes against the first model parameter (edr_figure.h) in
 // figures/edr_<i>.png; each figure's layout is added to `figures` (figures.json) with kind "edr".
 std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs,
@@ -280,13 +294,7 @@ std::vector<FigureRef> write_edr_figures(const std::vector<nlohmann::json>& runs
     const std::optional<PlotCanvas> canvas = draw_edr_figure(runs[i], label);
     if (!canvas) continue;
     const std::string file = std::string(kFigureDir) + "/" + kEdrFigurePrefix + std::to_string(i) + ".png";
-    canvas->save(out_dir / file);
-    refs.push_back({file, label});
-    nlohmann::json entry = canvas->layout();
-    entry["file"] = file;
-    entry["config_id"] = nullptr;  // not a configuration's
-    entry["kind"] = "edr";
-    figures->push_back(entry);
+    save_report_figure(*canvas, out_dir, file, label, "edr", refs, figures);
   }
   return refs;
 }
@@ -304,13 +312,7 @@ std::vector<FigureRef> write_extremes_figures(const std::vector<nlohmann::json>&
     if (!canvas) continue;
     const std::string file =
         std::string(kFigureDir) + "/" + kExtremesFigurePrefix + std::to_string(i) + ".png";
-    canvas->save(out_dir / file);
-    refs.push_back({file, label});
-    nlohmann::json entry = canvas->layout();
-    entry["file"] = file;
-    entry["config_id"] = nullptr;
-    entry["kind"] = "extremes";
-    figures->push_back(entry);
+    save_report_figure(*canvas, out_dir, file, label, "extremes", refs, figures);
   }
   return refs;
 }
@@ -364,14 +366,10 @@ std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& run
       const PlotCanvas canvas = draw_cspace_view(data, view);
       const std::string file = std::string(kFigureDir) + "/" + kPlanFigurePrefix + std::to_string(i) + "_" +
                                view_name(view) + ".png";
-      canvas.save(out_dir / file);
-      refs.push_back({file, task->task.name + ": planned motions' cpositions and commands, " +
-                                view_name(view) + " view"});
-      nlohmann::json entry = canvas.layout();
-      entry["file"] = file;
-      entry["config_id"] = nullptr;
-      entry["kind"] = "plan";
-      figures->push_back(entry);
+      save_report_figure(
+          canvas, out_dir, file,
+          task->task.name + ": planned motions' cpositions and commands, " + view_name(view) + " view",
+          "plan", refs, figures);
     }
   }
   return refs;
