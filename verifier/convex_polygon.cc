@@ -31,4 +31,26 @@ double polygon_area(const std::vector<Vec3>& polygon, const Vec3& n) {
   return 0.5 * n.dot(s);
 }
 
+std::vector<Vec3> clip_to_halfspace(const std::vector<Vec3>& points, const Vec3& d, double level) {
+  std::vector<Vec3> out;
+  if (points.size() <= 2) {
+    for (const Vec3& p : points)
+      if (d.dot(p) <= level) out.push_back(p);
+    if (points.size() == 2) {
+      const double fa = d.dot(points[0]) - level, fb = d.dot(points[1]) - level;
+      if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0))
+        out.push_back(points[0] + (points[1] - points[0]) * (fa / (fa - fb)));
+    }
+    return out;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& a = points[i];
+    const Vec3& b = points[(i + 1) % points.size()];
+    const double fa = d.dot(a) - level, fb = d.dot(b) - level;
+    if (fa <= 0) out.push_back(a);
+    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) out.push_back(a + (b - a) * (fa / (fa - fb)));
+  }
+  return out;
+}
+
 }  // namespace cmt

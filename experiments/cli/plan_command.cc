@@ -1,6 +1,7 @@
 // `cmt plan TASK --states [--max-atoms K] [--friction MU] [--eps-s E] [--theta-f T] [--list] --json`: the
-// primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--max-atoms K] [--max-motions M]
-// --json [-o OUT.yaml] [--check N] [--extremes N]`: the planner's search over sticking arcs (§6.5–6.7), the
+// primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--termination sticking|position]
+// [--max-atoms K] [--max-motions M] --json [-o OUT.yaml] [--check N] [--extremes N]`: the planner's search
+// over sticking arcs, or with the goal's sensed-position set (types 1 and 2, §6.5–6.7, goal_stops.h), the
 // planned strategy checked by the verifier, by rollouts and by §6.3.4's extreme-point experiment
 // (docs/planner.md).
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "experiments/validation/verifier_model.h"
 #include "models/loaded_task.h"
 #include "models/task_error.h"
+#include "verifier/planner/goal_stops.h"
 #include "verifier/planner/primitive_states.h"
 #include "verifier/planner/search.h"
 #include "verifier/planner/task_atoms.h"
@@ -63,7 +65,10 @@ std::shared_ptr<const LoadedTask> task_with_overrides(const PlanCli& cli) {
 
 nlohmann::json atom_names(const CSpace& c, const std::vector<int>& atoms) {
   nlohmann::json names = nlohmann::json::array();
-  for (int a : atoms) names.push_back(a == c.atom_count() ? std::string("free") : c.atom_name(a));
+  for (int a : atoms)
+    names.push_back(a == c.atom_count()       ? std::string("free")
+                    : a == c.atom_count() + 1 ? std::string("goal")
+                                              : c.atom_name(a));
   return names;
 }
 
@@ -87,6 +92,14 @@ nlohmann::json cpositions_json(const planner::CPositionSet& set, int dimension) 
   return pieces;
 }
 
+// Axis boxes as {min, max} points.
+nlohmann::json boxes_json(const std::vector<AxisBox>& boxes, int dimension) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AxisBox& b : boxes)
+    out.push_back({{"min", point_json(b.min, dimension)}, {"max", point_json(b.max, dimension)}});
+  return out;
+}
+
 // planned_1, planned_2, ...; when the task already has such a motion (a task written by -o planned again):
 // planned_2_1, ..., the first prefix none of whose n names is taken.
 std::vector<std::string> planned_motion_names(const Task& task, std::size_t n) {
@@ -103,7 +116,8 @@ std::vector<std::string> planned_motion_names(const Task& task, std::size_t n) {
 // the planned task (nothing when no strategy is written).
 std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::string& text,
                                                const LoadedTask& task, const planner::PlanResult& plan,
-                                               const std::vector<std::string>& names, nlohmann::json& out) {
+                                               const std::vector<std::string>& names,
+                                               const std::vector<AxisBox>& spositions, nlohmann::json& out) {
   if (plan.steps.empty()) {
     out["strategy"] = nlohmann::json::array();
     out["strategy_reason"] = "the start lies in the goal: no motion is needed";
@@ -118,7 +132,7 @@ std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::st
   }
   std::vector<AddedMotion> motions;
   for (std::size_t i = 0; i < plan.steps.size(); ++i)
-    motions.push_back({names[i], Motion::Kind::kSpring, plan.steps[i].arc.commanded});
+    motions.push_back({names[i], Motion::Kind::kSpring, plan.steps[i].arc.commanded, false, spositions});
   const std::string name = free_strategy_name(task.task, "planned");
   const std::string planned = task_yaml_with_motions(text, task.task, motions, name, "the planner's");
   const auto planned_task = load_task_from_string(planned, cli.task);
@@ -170,10 +184,10 @@ void add_extremes(const PlanCli& cli, const std::shared_ptr<const LoadedTask>& p
 }
 
 void run_plan_search(const PlanCli& cli, CommandState& state) {
-  if (cli.termination != "sticking")
+  if (cli.termination == "force")
     throw CLI::ValidationError("--termination",
-                               "only sticking is built: the planner's position- and "
-                               "force-sensing arcs (types 2 and 3) are not (docs/planner.md)");
+                               "force sensing (type 3 arcs) is not built: use sticking or position "
+                               "(docs/planner.md)");
   const auto start = std::chrono::steady_clock::now();
   const std::string text = text_with_overrides(cli);
   const auto task = load_task_from_string(text, cli.task);
@@ -185,6 +199,17 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   planner::PlanRequest request;
   request.start_atoms = planner::start_atoms(*task);
   request.goal_atom = planner::goal_atoms(*task);
+  planner::GoalStops stops;
+  stops.partial_faces = planner::partial_goal_faces(*task, request.goal_atom);
+  request.goal_near.assign(request.goal_atom.size(), false);
+  for (const planner::PartialGoalFace& f : stops.partial_faces)
+    request.goal_near[static_cast<std::size_t>(f.atom)] = true;
+  MotionTermination terminate;  // of every planned motion
+  if (cli.termination == "position") {
+    stops.sensed_positions = planner::goal_sensed_positions(*task);
+    stops.senses = planner::sensing_atoms(c, stops.sensed_positions, u.eps_s);
+    terminate.position = stops.sensed_positions;
+  }
   request.eps_s = u.eps_s;
   request.theta_f = u.theta_f;
   request.max_atoms = cli.max_atoms > 0 ? cli.max_atoms : c.atom_count();
@@ -193,19 +218,27 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   request.chain_projections = !cli.no_chain_projections;
   const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
   request.confirm_chain = [&](const std::vector<Vec3>& commanded) {
-    return planner::verifier_chain(*task, commanded, verify_options);
+    return planner::verifier_chain(*task, commanded, verify_options, terminate);
   };
   request.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
-    const planner::ChainVerdict v = planner::verifier_chain(*task, {commanded}, verify_options);
+    const planner::ChainVerdict v = planner::verifier_chain(*task, {commanded}, verify_options, terminate);
     if (v.ends.empty()) return std::nullopt;
     return v.ends.front();
   };
-  planner::AtomSimulation simulation(c, u);
-  const planner::PlanResult plan = planner::plan_sticking(simulation, c, request);
+  const std::vector<AxisBox> spositions = stops.sensed_positions;
+  planner::AtomSimulation simulation(c, u, std::move(stops));
+  planner::PlanResult plan;
+  if (cli.termination == "position" && spositions.empty())
+    plan.reason =
+        "no sensed-position set: no goal polygon on an axis-aligned plane keeps eps_s clear of the contacts "
+        "outside the goal (docs/planner.md, \"Goal stops\")";
+  else
+    plan = planner::plan_sticking(simulation, c, request);
   nlohmann::json out = {{"task", task->task.name},
                         {"task_file", std::filesystem::absolute(cli.task).string()},
                         {"found", plan.found},
-                        {"termination", "sticking"},
+                        {"termination", cli.termination},
+                        {"spositions", boxes_json(spositions, task->task.dimension)},
                         {"start_states", states_json(c, plan.start_states)},
                         {"expanded", plan.expanded},
                         {"arcs", plan.arcs},
@@ -226,7 +259,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                        {"source", arc.from_start_projection   ? "start projection"
                                   : arc.from_chain_projection ? "chain projection"
                                                               : "simulation"},
-                       {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)}});
+                       {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)},
+                       {"spositions", boxes_json(spositions, task->task.dimension)}});
     steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
                      {"motion", names[i]},
                      {"targets", atom_names(c, arc.arc.targets)},
@@ -235,7 +269,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   out["motions"] = motions;
   out["steps"] = steps;
   if (plan.found) {
-    const auto planned = add_strategy(cli, text, *task, plan, names, out);
+    const auto planned = add_strategy(cli, text, *task, plan, names, spositions, out);
     if (planned && cli.extremes > 0) add_extremes(cli, planned, plan, names, out);
   } else {
     out["reason"] = plan.reason, out["strategy"] = nullptr;
@@ -324,7 +358,10 @@ void add_plan_command(CLI::App& app, CommandState& state) {
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--no-chain-projections", cli->no_chain_projections,
                 "no continuations of the start projections (later motions from the simulation's cells only)");
-  cmd->add_option("--termination", cli->termination, "how the planned motions end: sticking (the default)");
+  cmd->add_option("--termination", cli->termination,
+                  "how the planned motions end: sticking (the default, type 1) or position (type 2: also on "
+                  "sensing a position in the goal's sensed-position set)")
+      ->check(CLI::IsMember({"sticking", "position", "force"}));
   cmd->add_option("--check", cli->check,
                   "run N MuJoCo rollouts of the planned strategy (`cmt validate`) and report them as check")
       ->check(CLI::Range(0, 1'000'000));

@@ -5,6 +5,31 @@
 #include "models/task_error.h"
 
 namespace cmt {
+namespace {
+
+YAML::Node point_yaml(const Vec3& p, const Task& task) {
+  YAML::Node v(YAML::NodeType::Sequence);
+  v.SetStyle(YAML::EmitterStyle::Flow);
+  v.push_back(p.x());
+  if (task.dimension == 3) v.push_back(p.y());
+  v.push_back(p.z());
+  return v;
+}
+
+// A list of `{box: {min, max}}` items (docs/task-format.md, "Termination sets").
+YAML::Node boxes_yaml(const std::vector<AxisBox>& boxes, const Task& task) {
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const AxisBox& b : boxes) {
+    YAML::Node item;
+    item.SetStyle(YAML::EmitterStyle::Flow);
+    item["box"]["min"] = point_yaml(b.min, task);
+    item["box"]["max"] = point_yaml(b.max, task);
+    list.push_back(item);
+  }
+  return list;
+}
+
+}  // namespace
 
 std::string task_yaml_with_motions(const std::string& task_yaml, const Task& task,
                                    const std::vector<AddedMotion>& motions, const std::string& strategy_name,
@@ -15,15 +40,12 @@ std::string task_yaml_with_motions(const std::string& task_yaml, const Task& tas
   for (const AddedMotion& m : motions) {
     if (task.find_motion(m.name))
       throw TaskError(task.source_file, "motions." + m.name, who + " motion name is taken");
-    YAML::Node v(YAML::NodeType::Sequence);
-    v.SetStyle(YAML::EmitterStyle::Flow);
-    v.push_back(m.target.x());
-    if (task.dimension == 3) v.push_back(m.target.y());
-    v.push_back(m.target.z());
+    const YAML::Node v = point_yaml(m.target, task);
     YAML::Node motion;
     motion.SetStyle(YAML::EmitterStyle::Flow);
     motion[m.kind == Motion::Kind::kSpring ? "spring" : "damper"] = v;
     if (m.edr) motion["edr"] = true;
+    if (!m.sensed_positions.empty()) motion["terminate"]["position"] = boxes_yaml(m.sensed_positions, task);
     root["motions"][m.name] = motion;
     list.push_back(m.name);
   }

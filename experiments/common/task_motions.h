@@ -13,8 +13,9 @@ namespace cmt {
 struct AddedMotion {
   std::string name;
   Motion::Kind kind = Motion::Kind::kSpring;
-  Vec3 target = Vec3::Zero();  // damper: direction; spring: commanded position (task units)
-  bool edr = false;            // marks the motion whose termination the EDR report reads
+  Vec3 target = Vec3::Zero();             // damper: direction; spring: commanded position (task units)
+  bool edr = false;                       // marks the motion whose termination the EDR report reads
+  std::vector<AxisBox> sensed_positions;  // `terminate: {position: ...}` when not empty (type 2)
 };
 
 // The text (comments dropped). Throws TaskError naming `motions.NAME` when a motion name is taken, or

@@ -1,11 +1,13 @@
 // `cmt plan` end to end (docs/planner.md): Table 6.3's cube row, the hole's atom counts with the table's
-// sensing errors, Buckley §6.3.1's one-motion cube plan with the verifier's verdict and rollouts, and bad
-// input.
+// sensing errors, Buckley §6.3.1's one-motion cube plan with the verifier's verdict and rollouts, §6.3.2's
+// with position-sensing termination, and bad input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "tests/experiments/cmt_runner.h"
 
@@ -77,6 +79,45 @@ TEST(CmtPlan, CubeHasAOneMotionPlanThatTheVerifierAndTheRolloutsConfirm) {
   const auto again = nlohmann::json::parse(run("plan " + out + " --json").out);
   EXPECT_EQ(again["strategy"], nlohmann::json::array({"planned_2_1"}));
   EXPECT_EQ(again["strategy_name"], "planned_2");
+}
+
+// §6.3.2: start a bottom edge, goal the interior of the bottom (models/tasks/cube_sensing.yaml: the bottom
+// inset by eps_s, which holds no atom's closure), position-sensing termination: one spring motion below the
+// bottom with the goal's sensed-position set P_s = the goal shrunk by eps_s, 2 eps_s thick (goal_stops.h);
+// it stops only in the goal (a goal stop), the verifier agrees, and in every one of 1000 rollouts it
+// reaches the goal, stopped by sensing. -o writes the motion with its `terminate: position` set.
+TEST(CmtPlan, CubeSensingHasAOneMotionPlanWithItsSensedPositionSet) {
+  const std::string out = testing::TempDir() + "/cube_sensing_planned.yaml";
+  const Result r = run("plan " + task("cube_sensing") +
+                       " --termination position --check 1000 --seed 7 --threads 2 --json -o " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["found"].get<bool>()) << r.out;
+  EXPECT_EQ(j["termination"], "position");
+  ASSERT_EQ(j["spositions"].size(), 1u);
+  const auto& box = j["spositions"][0];
+  for (int k = 0; k < 2; ++k) {  // the goal [-.8, .8]^2 shrunk by eps_s (and a margin of ~1e-6 x scale)
+    EXPECT_NEAR(box["min"][k].get<double>(), -0.6, 1e-4);
+    EXPECT_NEAR(box["max"][k].get<double>(), 0.6, 1e-4);
+    EXPECT_LT(box["max"][k].get<double>(), 0.6);
+  }
+  EXPECT_DOUBLE_EQ(box["min"][2].get<double>(), -1.2);
+  EXPECT_DOUBLE_EQ(box["max"][2].get<double>(), -0.8);
+  ASSERT_EQ(j["motions"].size(), 1u);
+  EXPECT_EQ(j["motions"][0]["spositions"], j["spositions"]);
+  EXPECT_LT(j["motions"][0]["commanded"][2].get<double>(), -1.0);    // behind the bottom's plane
+  EXPECT_EQ(j["steps"][0]["state"], nlohmann::json::array({"e2"}));  // the bottom edge y = -1
+  EXPECT_EQ(j["steps"][0]["targets"], nlohmann::json::array({"goal"}));
+  EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
+  EXPECT_EQ(j["check"]["rollouts"], 1000);
+  EXPECT_EQ(j["check"]["successes"], 1000);
+  EXPECT_EQ(j["check"]["outside"], 0);
+  // The written motion carries P_s; its rollouts stop by sensing.
+  const Result rollouts = run("rollout " + out + " --strategy planned -n 20 --seed 3 --json");
+  ASSERT_EQ(rollouts.status, 0) << rollouts.out;
+  const auto ro = nlohmann::json::parse(rollouts.out);
+  EXPECT_EQ(ro["successes"], 20);
+  for (const auto& o : ro["outcomes"]) EXPECT_EQ(o["termination"], "position") << o;
 }
 
 // §6.3.3: the hole from the start segment on the top face. The first motion comes from the start projection
@@ -168,8 +209,32 @@ TEST(CmtPlan, CubeMotionReachesTheGoalFromEveryVertexOfItsCell) {
   }
 }
 
+// A goal .3 in wide has no sensed-position set (shrunk by eps_s = .2 on each side nothing is left): no plan,
+// exit 1, with the reason.
+TEST(CmtPlan, PositionTerminationWithoutASensedPositionSetFindsNothing) {
+  const std::string file = testing::TempDir() + "/cube_small_goal.yaml";
+  {
+    std::ifstream in(task("cube_sensing"));
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string yaml = text.str();
+    const std::string goal = "[[-0.8, -0.8, -1], [0.8, -0.8, -1], [0.8, 0.8, -1], [-0.8, 0.8, -1]]";
+    ASSERT_NE(yaml.find(goal), std::string::npos);
+    yaml.replace(yaml.find(goal), goal.size(),
+                 "[[-0.15, -0.15, -1], [0.15, -0.15, -1], [0.15, 0.15, -1], [-0.15, 0.15, -1]]");
+    std::ofstream(file) << yaml;
+  }
+  const Result r = run("plan " + file + " --termination position --json");
+  EXPECT_EQ(r.status, 1) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["found"].get<bool>());
+  EXPECT_TRUE(j["spositions"].empty());
+  EXPECT_NE(j["reason"].get<std::string>().find("no sensed-position set"), std::string::npos) << j["reason"];
+}
+
 TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {
   EXPECT_EQ(run("plan " + task("cube") + " --termination force --json").status, 2);
+  EXPECT_EQ(run("plan " + task("cube") + " --termination sensing --json").status, 2);
   const Result planar = run("plan " + task("planar_blocks") + " --json");
   EXPECT_EQ(planar.status, 2);
   EXPECT_EQ(nlohmann::json::parse(planar.out)["error"]["key"], "dimension");

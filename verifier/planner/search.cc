@@ -79,10 +79,18 @@ class Search {
   }
 
  private:
+  bool near_goal(int a) const {
+    return a < static_cast<int>(req_.goal_near.size()) && req_.goal_near[static_cast<std::size_t>(a)];
+  }
+  bool goal_atom(int a) const {
+    return a == sim_.goal_stop_atom() || (a < static_cast<int>(req_.goal_atom.size()) && req_.goal_atom[a]);
+  }
   bool is_goal(const State& s) const {
-    return std::all_of(s.begin(), s.end(), [&](int a) {
-      return a < static_cast<int>(req_.goal_atom.size()) && req_.goal_atom[a];
-    });
+    return std::all_of(s.begin(), s.end(), [&](int a) { return goal_atom(a); });
+  }
+  // Whether a motion with these targets may come to rest in free space.
+  bool ends_in_free(const std::vector<int>& targets) const {
+    return std::find(targets.begin(), targets.end(), sim_.free_atom()) != targets.end();
   }
 
   // §6.6.2: the state's arcs, one per target set met at the seeds (seeds()): the cell of the seed whose cell
@@ -92,7 +100,7 @@ class Search {
     std::map<std::vector<int>, std::vector<Vec3>> by_targets;
     for (const Vec3& p : seeds()) {
       std::vector<int> targets = sim_.targets_at(state, p);
-      if (targets.empty() || targets.back() == sim_.free_atom()) continue;
+      if (targets.empty() || ends_in_free(targets)) continue;
       auto& list = by_targets[targets];
       if (static_cast<int>(list.size()) < kSeedsPerTargetSet) list.push_back(p);
     }
@@ -154,7 +162,7 @@ class Search {
       const Vec3 p = projection_seeds()[next_projection_seed_++];
       ++out.start_projections;
       const std::optional<std::vector<int>> targets = req_.start_targets(p);
-      if (!targets || targets->empty() || targets->back() == sim_.free_atom()) continue;
+      if (!targets || targets->empty() || ends_in_free(*targets)) continue;
       if (!projected_targets_.insert(*targets).second) {
         if (add_projection_alternative(*targets, p)) return true;
         continue;
@@ -211,7 +219,12 @@ class Search {
       return false;
     const auto it = graph_.find(start_states().front());
     if (it == graph_.end()) return false;
-    if (chain_seeds_.empty()) chain_seeds_ = chain_seeds(cspace_, req_.goal_atom, req_.eps_s);
+    if (chain_seeds_.empty()) {
+      std::vector<bool> goal_or_near(static_cast<std::size_t>(cspace_.atom_count()));
+      for (int a = 0; a < cspace_.atom_count(); ++a)
+        goal_or_near[static_cast<std::size_t>(a)] = goal_atom(a) || near_goal(a);
+      chain_seeds_ = chain_seeds(cspace_, goal_or_near, req_.eps_s);
+    }
     const std::vector<Vec3>& seeds = chain_seeds_;
     for (GraphArc& arc : it->second) {
       if (!arc.from_start_projection || arc.rejected || arc.heads.size() != 1 || is_goal(arc.heads[0]))
@@ -221,7 +234,7 @@ class Search {
         const ChainVerdict& verdict = chain_verdict({arc.commanded, q}, &out.chain_projections);
         if (verdict.ends.size() < 2 || !verdict.ends[1]) continue;
         const std::vector<int>& targets = *verdict.ends[1];
-        if (targets.empty() || targets.back() == sim_.free_atom()) continue;
+        if (targets.empty() || ends_in_free(targets)) continue;
         if (std::any_of(arc.continuations.begin(), arc.continuations.end(),
                         [&](const GraphArc& c) { return !c.rejected && c.arc.targets == targets; }))
           continue;
@@ -319,9 +332,10 @@ class Search {
     add_grid(near);
     for (const Face& f : cspace_.faces())
       for (const Vec3& p : contact_seeds(f, req_.eps_s)) seeds_.push_back(p);
-    for (int g = 0; g < static_cast<int>(req_.goal_atom.size()); ++g) {
-      if (!req_.goal_atom[static_cast<std::size_t>(g)]) continue;
-      for (const CPositionSet* set : {&sim_.strong_sticking(g), &sim_.weak_sticking(g)})
+    for (int g = 0; g < cspace_.atom_count(); ++g) {
+      if (!goal_atom(g) && !near_goal(g)) continue;
+      for (const CPositionSet* set :
+           {&sim_.strong_sticking(g), &sim_.weak_sticking(g), &sim_.goal_sticking(g)})
         for (const ConvexPiece& piece : set->pieces()) {
           Vec3 c = Vec3::Zero();
           for (const Vec3& v : piece.vertices) c += v;
@@ -335,9 +349,9 @@ class Search {
     double worst = 0;
     for (int a : atoms) {
       double best = std::numeric_limits<double>::infinity();
-      if (a < static_cast<int>(req_.goal_atom.size()) && req_.goal_atom[a]) best = 0;
-      for (int g = 0; g < static_cast<int>(req_.goal_atom.size()) && best > 0; ++g)
-        if (req_.goal_atom[g]) best = std::min(best, atom_distance(cspace_, a, g));
+      if (goal_atom(a) || near_goal(a)) best = 0;
+      for (int g = 0; g < cspace_.atom_count() && best > 0; ++g)
+        if (goal_atom(g) || near_goal(g)) best = std::min(best, atom_distance(cspace_, a, g));
       worst = std::max(worst, best);
     }
     return worst;
@@ -545,9 +559,16 @@ class Search {
 
 }  // namespace
 
-std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& atoms) {
-  // Bron–Kerbosch without pivoting: the sets are small (the targets of one arc).
+std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& all_atoms) {
+  // Bron–Kerbosch without pivoting: the sets are small (the targets of one arc). Ids past the table (the
+  // free-space and goal-stop atoms) are states of their own.
   std::vector<State> out;
+  std::vector<int> atoms;
+  for (int a : all_atoms)
+    if (a < confusable.atoms())
+      atoms.push_back(a);
+    else
+      out.push_back({a});
   std::function<void(State, std::vector<int>, std::vector<int>)> grow = [&](State r, std::vector<int> p,
                                                                             std::vector<int> x) {
     if (p.empty() && x.empty()) {
@@ -569,7 +590,7 @@ std::vector<State> confusable_sets(const Confusability& confusable, const std::v
       x.push_back(v);
     }
   };
-  grow({}, atoms, {});
+  if (!atoms.empty()) grow({}, atoms, {});
   std::sort(out.begin(), out.end());
   return out;
 }

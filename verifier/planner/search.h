@@ -1,7 +1,8 @@
-// Buckley's planner search (§6.5, §6.6) over type 1 (sticking) arcs: states are sets of atoms sensing cannot
-// tell apart; a state's arcs are the cells of the simulation's arrangement (simulation.h) met at seed
-// commanded positions, one per target set; a best-first expansion with AND/OR evaluation returns the first
-// strategy that reaches goal states in every branch.
+// Buckley's planner search (§6.5, §6.6) over the simulation's arcs (type 1, sticking, or type 2 with the
+// goal's sensed positions: the simulation's GoalStops decide): states are sets of atoms sensing cannot tell
+// apart; a state's arcs are the cells of the simulation's arrangement (simulation.h) met at seed commanded
+// positions, one per target set; a best-first expansion with AND/OR evaluation returns the first strategy
+// that reaches goal states in every branch.
 #pragma once
 
 #include <functional>
@@ -28,6 +29,9 @@ struct ChainVerdict {
 struct PlanRequest {
   std::vector<int> start_atoms;  // the atoms the robot may start in
   std::vector<bool> goal_atom;   // per atom: its closure lies in the goal
+  // Per atom: a face partly in the goal (goal_stops.h), at goal distance 0 for the search's order and seeds.
+  // Stops surely inside the goal are the simulation's goal-stop atom, a goal state.
+  std::vector<bool> goal_near;
   double eps_s = 0, theta_f = 0;
   int max_atoms = 3;         // states of more atoms (that are not goal states) are not expanded
   int max_motions = 3;       // the longest branch of a strategy
@@ -112,7 +116,8 @@ struct PlanResult {
 };
 
 // The maximal subsets of `atoms` whose atoms are pairwise confusable (Def 6.1): the states the robot may
-// find itself in after terminating somewhere in `atoms`.
+// find itself in after terminating somewhere in `atoms`. Ids past the table (free space, goal stops) are
+// states of their own: the robot knows it came to rest or stopped by sensing.
 std::vector<State> confusable_sets(const Confusability& confusable, const std::vector<int>& atoms);
 
 // Commanded positions behind a face (Buckley's motions that stick on a face, such as the hole's p2

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "verifier/atom_cone.h"
+#include "verifier/convex_polygon.h"
 #include "verifier/sensing.h"
 #include "verifier/spring.h"
 #include "verifier/spring_projection.h"
@@ -20,6 +21,9 @@ namespace {
 constexpr double kTightRelative = 1e-9;
 // A point of A within this (x scale) of B's closure is shared by the two closures.
 constexpr double kSharedRelative = 1e-9;
+// A face whose friction angle plus theta_v reaches this (radians, below pi/2) has no goal sticking set: the
+// disc where the robot may stick grows without bound with the depth of p.
+constexpr double kMaxGoalStickAngle = 1.5;
 
 Vec3 centroid(const std::vector<Vec3>& points) {
   Vec3 c = Vec3::Zero();
@@ -36,30 +40,6 @@ Vec3 outward_in_plane(const Face& f, const Vec3& a, const Vec3& b) {
 
 // p . d >= level, as a half-space.
 HalfSpace at_least(const Vec3& d, double level) { return {-d, -level}; }
-
-// The part of a convex polygon (or segment, or point) with d . x <= level.
-std::vector<Vec3> clip(const std::vector<Vec3>& points, const Vec3& d, double level) {
-  if (points.size() <= 2) {
-    std::vector<Vec3> out;
-    for (const Vec3& p : points)
-      if (d.dot(p) <= level) out.push_back(p);
-    if (points.size() == 2) {
-      const double fa = d.dot(points[0]) - level, fb = d.dot(points[1]) - level;
-      if ((fa < 0) != (fb < 0) && fa != fb)
-        out.push_back(points[0] + (points[1] - points[0]) * (fa / (fa - fb)));
-    }
-    return out;
-  }
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec3& a = points[i];
-    const Vec3& b = points[(i + 1) % points.size()];
-    const double fa = d.dot(a) - level, fb = d.dot(b) - level;
-    if (fa <= 0) out.push_back(a);
-    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) out.push_back(a + (b - a) * (fa / (fa - fb)));
-  }
-  return out;
-}
 
 // Rank (0..3) of a set of vectors, relative to their largest length.
 int rank_of(const std::vector<Vec3>& vectors, double tolerance) {
@@ -204,14 +184,16 @@ AxisBox planner_domain(const CSpace& cspace) {
   return box;
 }
 
-AtomSimulation::AtomSimulation(const CSpace& cspace, const Uncertainty& u)
+AtomSimulation::AtomSimulation(const CSpace& cspace, const Uncertainty& u, GoalStops goal_stops)
     : cspace_(cspace),
       u_(u),
+      goal_stops_(std::move(goal_stops)),
       domain_(planner_domain(cspace)),
       eps_t_(eps_t(u)),
       eps_o_(eps_o(u)),
       weak_stick_(static_cast<std::size_t>(cspace.atom_count())),
       strong_stick_(static_cast<std::size_t>(cspace.atom_count())),
+      goal_stick_(static_cast<std::size_t>(cspace.atom_count())),
       reach_(static_cast<std::size_t>(cspace.atom_count()) * static_cast<std::size_t>(cspace.atom_count())) {}
 
 namespace {
@@ -233,6 +215,29 @@ const CPositionSet& AtomSimulation::weak_sticking(int atom) {
 const CPositionSet& AtomSimulation::strong_sticking(int atom) {
   return cached(strong_stick_.at(static_cast<std::size_t>(atom)),
                 [&] { return CPositionSet::of_union(spring_strong_regions(cspace_, atom, u_), domain_); });
+}
+
+const CPositionSet& AtomSimulation::goal_sticking(int atom) {
+  return cached(goal_stick_.at(static_cast<std::size_t>(atom)), [&] {
+    CPositionSet out = CPositionSet::none(domain_);
+    if (cspace_.atom_kind(atom) != AtomKind::kFace) return out;
+    const Face& f = cspace_.faces()[cspace_.atom_index(atom)];
+    const double alpha = std::atan(f.friction) + u_.theta_v;
+    if (alpha >= kMaxGoalStickAngle) return out;  // the sticking disc is unbounded
+    const double t = std::tan(alpha);
+    for (const PartialGoalFace& g : goal_stops_.partial_faces) {
+      if (g.atom != atom) continue;
+      // m . p + t (offset - n . p) <= c - eps_s (1 + t), the depth d = offset - n . p (goal_stops.h).
+      std::vector<HalfSpace> hs;
+      for (const HalfSpace& side : g.sides) {
+        const Vec3 normal = side.normal - t * f.normal;
+        const double offset = side.offset - u_.eps_s * (1 + t) - t * f.offset;
+        hs.push_back({normal.normalized(), offset / normal.norm()});
+      }
+      out = out.unite(weak_sticking(atom).intersect(CPositionSet::convex(hs, domain_)));
+    }
+    return out;
+  });
 }
 
 const CPositionSet& AtomSimulation::free_rest() {
@@ -321,7 +326,7 @@ CPositionSet AtomSimulation::flight_reach(int from, int to) const {
       d = outward_in_plane(cspace_.faces()[cspace_.atom_index(from)], shared[0], shared[1]);
     else
       d = (shared[0] - centroid(source)).normalized();
-    source = clip(source, d, d.dot(shared[0]) - r_clip);
+    source = clip_to_halfspace(source, d, d.dot(shared[0]) - r_clip);
     if (source.empty()) return CPositionSet::none(domain_);
   }
   std::vector<Vec3> grown, rays, directions;
@@ -351,6 +356,11 @@ const CPositionSet& AtomSimulation::weak_reach(int from, int to) {
   });
 }
 
+bool AtomSimulation::senses(int atom) const {
+  return static_cast<std::size_t>(atom) < goal_stops_.senses.size() &&
+         goal_stops_.senses[static_cast<std::size_t>(atom)];
+}
+
 void AtomSimulation::traverse(const std::vector<int>& start, const Vec3& p,
                               const std::function<bool(int)>& at_atom,
                               const std::function<void(int, int, bool)>& at_pair) {
@@ -375,14 +385,22 @@ void AtomSimulation::traverse(const std::vector<int>& start, const Vec3& p,
 
 std::vector<int> AtomSimulation::targets_at(const std::vector<int>& start, const Vec3& p) {
   std::vector<int> targets;
+  bool goal_stop = false;
   traverse(
       start, p,
       [&](int b) {
-        if (weak_sticking(b).contains(p)) targets.push_back(b);
+        if (senses(b)) goal_stop = true;
+        if (weak_sticking(b).contains(p)) {
+          if (goal_sticking(b).contains(p))
+            goal_stop = true;
+          else
+            targets.push_back(b);
+        }
         return !strong_sticking(b).contains(p);
       },
       nullptr);
   if (free_rest().contains(p)) targets.push_back(free_atom());
+  if (goal_stop) targets.push_back(goal_stop_atom());
   std::sort(targets.begin(), targets.end());
   return targets;
 }
@@ -416,7 +434,12 @@ void add_inside(const CPositionSet& set, const Vec3& p, std::vector<HalfSpace>& 
 CPositionSet AtomSimulation::cell_at(const std::vector<int>& start, const Vec3& p) {
   std::vector<HalfSpace> hs;
   const auto at_atom = [&](int b) {
-    if (!weak_sticking(b).contains(p)) add_outside(weak_sticking(b), p, hs);
+    if (!weak_sticking(b).contains(p))
+      add_outside(weak_sticking(b), p, hs);
+    else if (goal_sticking(b).contains(p))
+      add_inside(goal_sticking(b), p, hs);  // keep its stops in the goal
+    else
+      add_outside(goal_sticking(b), p, hs);
     if (!strong_sticking(b).contains(p)) return true;
     add_inside(strong_sticking(b), p, hs);  // no way on from b: keep p sticking there
     return false;

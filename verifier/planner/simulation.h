@@ -18,6 +18,13 @@
 // sets is explored at chosen commanded positions instead: the cell of p is the convex set where every
 // missing edge of the graph stays missing, every reachable atom where p does not stick stays so, and p stays
 // out of free space, so every commanded position in it has targets among p's (search.h picks the p).
+//
+// Goal stops (goal_stops.h): with partial goal faces, sticking on such a face where the goal surely holds the
+// sticking points (goal_sticking) is a stop at the goal-stop atom (goal_stop_atom(), after the free-space
+// atom), sticking elsewhere on it a stop at the face; with P_s (type 2 arcs, §6.7.6), every reached atom
+// that P_s may sense also stops at the goal-stop atom, whatever p. Leaving an atom is modelled from the whole
+// atom, as for sticking (a type 2 motion that crosses its goal stops there first; the sets do not use it:
+// sound, looser; the verifier's sensing termination makes the same choice).
 #pragma once
 
 #include <functional>
@@ -27,6 +34,7 @@
 
 #include "models/cspace.h"
 #include "verifier/planner/arc.h"
+#include "verifier/planner/goal_stops.h"
 
 namespace cmt::planner {
 
@@ -39,9 +47,12 @@ AxisBox atoms_box(const CSpace& cspace);
 
 class AtomSimulation {
  public:
-  AtomSimulation(const CSpace& cspace, const Uncertainty& u);
+  AtomSimulation(const CSpace& cspace, const Uncertainty& u, GoalStops goal_stops = {});
 
   int free_atom() const { return cspace_.atom_count(); }
+  // The target of stops surely inside the goal on atoms that are not goal atoms.
+  int goal_stop_atom() const { return cspace_.atom_count() + 1; }
+  const GoalStops& goal_stops() const { return goal_stops_; }
   const AxisBox& domain() const { return domain_; }
   // The atoms where a motion commanded to p may stop when it starts in one of `start` (ascending; the
   // free-space atom last when it may come to rest in free space).
@@ -52,6 +63,9 @@ class AtomSimulation {
 
   const CPositionSet& weak_sticking(int atom);
   const CPositionSet& strong_sticking(int atom);
+  // The part of the weak sticking region of a partial goal face where every sticking point lies in the goal
+  // (goal_stops.h); empty for other atoms.
+  const CPositionSet& goal_sticking(int atom);
   // Commanded positions from which the robot, anywhere in A, may reach B directly (§6.7.5, weak):
   //   connected (one bounds the other): for a common face F, p at most eps_s in front of F's plane (else
   //   the pull lifts it off F) and on B's side of each separating plane between A and B, moved toward A by
@@ -70,16 +84,18 @@ class AtomSimulation {
   // from b), then at_pair(b, next, edge) for every other atom (edge: p may reach it from b).
   void traverse(const std::vector<int>& start, const Vec3& p, const std::function<bool(int)>& at_atom,
                 const std::function<void(int, int, bool)>& at_pair);
+  bool senses(int atom) const;  // a type 2 motion may stop on it by sensing (GoalStops::senses)
   CPositionSet connected_reach(int from, int to) const;
   CPositionSet flight_reach(int from, int to) const;
 
   const CSpace& cspace_;
   Uncertainty u_;
+  GoalStops goal_stops_;
   AxisBox domain_;
   double eps_t_ = 0, eps_o_ = 0;
   // Made on first use: per atom, and per (from, to) at from x atom_count + to. Never resized, so the
   // references handed out stay valid.
-  std::vector<std::optional<CPositionSet>> weak_stick_, strong_stick_, reach_;
+  std::vector<std::optional<CPositionSet>> weak_stick_, strong_stick_, goal_stick_, reach_;
   std::optional<CPositionSet> free_rest_;
 };
 

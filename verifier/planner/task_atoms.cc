@@ -8,9 +8,7 @@
 #include "verifier/planner/simulation.h"
 
 namespace cmt::planner {
-namespace {
 
-// Whether p lies in the closed region, within tol.
 bool in_region(const Region& region, const Vec3& p, double tol) {
   const auto& q = region.points;
   switch (region.kind) {
@@ -33,8 +31,6 @@ bool in_region(const Region& region, const Vec3& p, double tol) {
   }
   return false;
 }
-
-}  // namespace
 
 std::vector<int> start_atoms(const LoadedTask& task) {
   std::vector<int> atoms;

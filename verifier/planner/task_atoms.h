@@ -13,6 +13,9 @@ namespace cmt::planner {
 // strategy runs from the closed region).
 std::vector<int> start_atoms(const LoadedTask& task);
 
+// Whether p lies in the closed region (a point, a segment or a convex planar polygon), within tol.
+bool in_region(const Region& region, const Vec3& p, double tol);
+
 // Per atom: its closure lies inside one of the goal regions (within the task's surface tolerance).
 std::vector<bool> goal_atoms(const LoadedTask& task);
 

@@ -15,8 +15,10 @@ namespace cmt::planner {
 // order, the atoms where it may stop, or nothing where it may fail otherwise (rest in free space, slide
 // forever, not terminate, or the verifier fell back to "everything reached"); the list ends at the first
 // motion that may fail. Each motion starts from the previous one's actual termination set, not from whole
-// atoms, so a chain can verify where its arcs from whole atoms cannot.
+// atoms, so a chain can verify where its arcs from whole atoms cannot. Every motion carries `terminate`
+// (empty: sticking only). A stop on an atom that is not a goal atom but lies wholly in the goal (a partial
+// goal face, goal_stops.h) is reported as the goal-stop atom, cspace.atom_count() + 1.
 ChainVerdict verifier_chain(const LoadedTask& task, const std::vector<Vec3>& commanded,
-                            const VerifyOptions& options = {});
+                            const VerifyOptions& options = {}, const MotionTermination& terminate = {});
 
 }  // namespace cmt::planner

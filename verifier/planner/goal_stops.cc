@@ -1,0 +1,174 @@
+// Goal stops on partial goal faces and the sensed positions of a goal (goal_stops.h).
+#include "verifier/planner/goal_stops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "verifier/atom_cone.h"
+#include "verifier/convex_polygon.h"
+#include "verifier/planner/task_atoms.h"
+
+namespace cmt::planner {
+namespace {
+
+// Bisection steps for the scale of a goal's sensed rectangle (2^-40 of the polygon's bounding rectangle).
+constexpr int kRectangleBisections = 40;
+// A goal polygon's normal within this (1 - |n_k|) of a coordinate axis lies on an axis-aligned plane.
+constexpr double kAxisAligned = 1e-12;
+
+std::vector<Vec3> clip_to_box(std::vector<Vec3> points, const AxisBox& box) {
+  for (int k = 0; k < 3 && !points.empty(); ++k) {
+    points = clip_to_halfspace(points, Vec3::Unit(k), box.max[k]);
+    if (!points.empty()) points = clip_to_halfspace(points, -Vec3::Unit(k), -box.min[k]);
+  }
+  return points;
+}
+
+AxisBox grown(const AxisBox& box, double r) {
+  AxisBox out = box;
+  out.min.array() -= r;
+  out.max.array() += r;
+  return out;
+}
+
+Vec3 centroid(const std::vector<Vec3>& points) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : points) c += p;
+  return c / static_cast<double>(points.size());
+}
+
+// A polygon's sides as half-spaces m . x <= c with m in the plane of normal n, pointing out of the polygon.
+std::vector<HalfSpace> polygon_sides(const std::vector<Vec3>& polygon, const Vec3& n) {
+  const Vec3 c = centroid(polygon);
+  std::vector<HalfSpace> sides;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % polygon.size()];
+    Vec3 m = (b - a).cross(n);
+    if (m.norm() == 0) continue;
+    m.normalize();
+    if (m.dot(c - a) > 0) m = -m;
+    sides.push_back({m, m.dot(a)});
+  }
+  return sides;
+}
+
+Vec3 polygon_normal(const std::vector<Vec3>& q) {
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < q.size(); ++i) n += q[i].cross(q[(i + 1) % q.size()]);
+  return n.normalized();
+}
+
+// The centred axis rectangle (in the plane's two other axes) of a goal polygon on the plane x_k = level, each
+// side of the polygon moved in by `inset`, as a box 2 half_thickness thick; nothing when too small.
+std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, double inset,
+                                     double half_thickness, double margin) {
+  const Vec3 n = Vec3::Unit(k);
+  const std::vector<HalfSpace> sides = polygon_sides(polygon, n);
+  AxisBox bound{polygon[0], polygon[0]};
+  for (const Vec3& q : polygon) bound.min = bound.min.cwiseMin(q), bound.max = bound.max.cwiseMax(q);
+  const Vec3 c = centroid(polygon);
+  const auto fits = [&](double s) {
+    for (int corner = 0; corner < 4; ++corner) {
+      Vec3 q = c;
+      int bit = 0;
+      for (int axis = 0; axis < 3; ++axis) {
+        if (axis == k) continue;
+        const double end = (corner >> bit++) & 1 ? bound.max[axis] : bound.min[axis];
+        q[axis] = c[axis] + s * (end - c[axis]);
+      }
+      for (const HalfSpace& h : sides)
+        if (h.normal.dot(q) > h.offset - inset) return false;
+    }
+    return true;
+  };
+  if (!fits(0)) return std::nullopt;
+  double lo = 0, hi = 1;
+  if (fits(1)) lo = 1;
+  for (int i = 0; i < kRectangleBisections && lo < 1; ++i) (fits((lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
+  AxisBox box;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == k) {
+      box.min[axis] = c[axis] - half_thickness;
+      box.max[axis] = c[axis] + half_thickness;
+    } else {
+      box.min[axis] = c[axis] + lo * (bound.min[axis] - c[axis]);
+      box.max[axis] = c[axis] + lo * (bound.max[axis] - c[axis]);
+      if (box.max[axis] - box.min[axis] <= margin) return std::nullopt;
+    }
+  }
+  return box;
+}
+
+// Whether every contact point within r of the box lies in the goal: on a goal atom, or (the clipped part of
+// an atom, convex) inside one goal region.
+bool senses_goal_only(const LoadedTask& task, const std::vector<bool>& goal_atom, const AxisBox& box,
+                      double r) {
+  const CSpace& c = task.cspace;
+  const double tol = task.surface_tolerance();
+  const AxisBox near = grown(box, r);
+  for (int atom = 0; atom < c.atom_count(); ++atom) {
+    if (goal_atom[static_cast<std::size_t>(atom)]) continue;
+    const std::vector<Vec3> part = clip_to_box(atom_points(c, atom), near);
+    if (part.empty()) continue;
+    const bool inside = std::any_of(task.task.goal.begin(), task.task.goal.end(), [&](const Region& g) {
+      return std::all_of(part.begin(), part.end(), [&](const Vec3& p) { return in_region(g, p, tol); });
+    });
+    if (!inside) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<PartialGoalFace> partial_goal_faces(const LoadedTask& task, const std::vector<bool>& goal_atom) {
+  const CSpace& c = task.cspace;
+  const double tol = task.surface_tolerance();
+  std::vector<PartialGoalFace> out;
+  for (const Region& g : task.task.goal) {
+    if (g.kind != Region::Kind::kPolygon) continue;
+    for (const Face& f : c.faces()) {
+      if (goal_atom[static_cast<std::size_t>(f.id)]) continue;
+      if (std::any_of(g.points.begin(), g.points.end(),
+                      [&](const Vec3& q) { return std::abs(f.normal.dot(q) - f.offset) > tol; }))
+        continue;
+      std::vector<Vec3> overlap = g.points;
+      for (const HalfSpace& h : polygon_sides(f.polygon, f.normal))
+        if (!overlap.empty()) overlap = clip_to_halfspace(overlap, h.normal, h.offset);
+      if (overlap.size() < 3 || std::abs(polygon_area(overlap, f.normal)) <= tol * tol) continue;
+      out.push_back({f.id, polygon_sides(g.points, f.normal)});
+    }
+  }
+  return out;
+}
+
+std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task) {
+  const double eps_s = task.task.uncertainty.eps_s;
+  const double margin = kSensedSetRelativeMargin * task.cspace.scale();
+  const std::vector<bool> goal_atom = goal_atoms(task);
+  std::vector<AxisBox> out;
+  for (const Region& g : task.task.goal) {
+    if (g.kind != Region::Kind::kPolygon) continue;
+    const Vec3 n = polygon_normal(g.points);
+    int k = 0;
+    n.cwiseAbs().maxCoeff(&k);
+    if (1 - std::abs(n[k]) > kAxisAligned) continue;
+    const std::optional<AxisBox> box =
+        inscribed_box(g.points, k, eps_s + 2 * margin, eps_s > 0 ? eps_s : margin, margin);
+    if (box && senses_goal_only(task, goal_atom, *box, eps_s + margin)) out.push_back(*box);
+  }
+  return out;
+}
+
+std::vector<bool> sensing_atoms(const CSpace& cspace, const std::vector<AxisBox>& boxes, double eps_s) {
+  const double r = eps_s + kSensedSetRelativeMargin * cspace.scale();
+  std::vector<bool> out(static_cast<std::size_t>(cspace.atom_count()), false);
+  for (int atom = 0; atom < cspace.atom_count(); ++atom)
+    for (const AxisBox& box : boxes)
+      if (!clip_to_box(atom_points(cspace, atom), grown(box, r)).empty())
+        out[static_cast<std::size_t>(atom)] = true;
+  return out;
+}
+
+}  // namespace cmt::planner
