@@ -15,6 +15,7 @@
 #include "experiments/cli/command.h"
 #include "experiments/common/task_motions.h"
 #include "experiments/common/task_overrides.h"
+#include "experiments/plan/chain_verdicts.h"
 #include "experiments/plan/extreme_points.h"
 #include "experiments/validation/validation.h"
 #include "experiments/validation/verifier_model.h"
@@ -34,8 +35,10 @@ struct PlanCli {
   std::string task, out, termination = "sticking";
   bool states = false, list = false, no_chain_projections = false;
   int max_atoms = 0, max_motions = 3, max_expansions = 200;
-  int check = 0, threads = 1;  // rollouts of the planned strategy (0: none), and their threads
-  int extremes = 0;            // rollouts per point of the extreme-point experiment (0: none)
+  // Rollouts of the planned strategy (0: none); threads of the rollouts and processes of the search's
+  // verifier checks.
+  int check = 0, threads = 1;
+  int extremes = 0;  // rollouts per point of the extreme-point experiment (0: none)
   std::vector<double> grow = {1, 2, 4};
   std::uint64_t seed = 1;
   long long max_states = 1'000'000;
@@ -217,14 +220,16 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   request.max_expansions = cli.max_expansions;
   request.chain_projections = !cli.no_chain_projections;
   const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
-  request.confirm_chain = [&](const std::vector<Vec3>& commanded) {
-    return planner::verifier_chain(*task, commanded, verify_options, terminate);
-  };
+  // The search's verifier checks, memoized, verified ahead `--threads` at a time in forked children.
+  ChainVerdicts verdicts(*task, verify_options, terminate, cli.threads);
+  request.confirm_chain = [&](const std::vector<Vec3>& commanded) { return verdicts.get(commanded); };
   request.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
-    const planner::ChainVerdict v = planner::verifier_chain(*task, {commanded}, verify_options, terminate);
+    const planner::ChainVerdict v = verdicts.get({commanded});
     if (v.ends.empty()) return std::nullopt;
     return v.ends.front();
   };
+  request.prefetch = [&](const std::vector<std::vector<Vec3>>& chains) { verdicts.prefetch(chains); };
+  request.lookahead = cli.threads;
   const std::vector<AxisBox> spositions = stops.sensed_positions;
   planner::AtomSimulation simulation(c, u, std::move(stops));
   planner::PlanResult plan;
@@ -234,6 +239,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
         "outside the goal (docs/planner.md, \"Goal stops\")";
   else
     plan = planner::plan_sticking(simulation, c, request);
+  const double search_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json out = {{"task", task->task.name},
                         {"task_file", std::filesystem::absolute(cli.task).string()},
                         {"found", plan.found},
@@ -248,7 +255,9 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"decision_free", plan.decision_free},
                         {"chains_checked", plan.chains_checked},
                         {"start_projections", plan.start_projections},
-                        {"chain_projections", plan.chain_projections}};
+                        {"chain_projections", plan.chain_projections},
+                        {"search_seconds", search_seconds},
+                        {"verifier_seconds", verdicts.seconds()}};
   nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
   const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
   for (std::size_t i = 0; i < plan.steps.size(); ++i) {
@@ -372,7 +381,10 @@ void add_plan_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--grow", cli->grow, "growths of the cpositions for --extremes, in eps_p (default 1 2 4)")
       ->check(CLI::Range(0.0, 1000.0));
   cmd->add_option("--seed", cli->seed, "master seed of the --check and --extremes rollouts (default 1)");
-  cmd->add_option("--threads", cli->threads, "threads of the --check and --extremes rollouts (default 1)")
+  cmd->add_option(
+         "--threads", cli->threads,
+         "threads of the --check and --extremes rollouts, and verifier checks of the search run at once "
+         "(forked processes; default 1); the plan does not depend on it")
       ->check(CLI::Range(1, 256));
   cmd->add_option("-o", cli->out,
                   "write the task with the planned strategy added (spring motions planned_1, ...)");

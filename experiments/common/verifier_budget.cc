@@ -54,10 +54,13 @@ std::string describe_status(int status) {
   return "status " + std::to_string(status);
 }
 
-}  // namespace
+// A forked child running `work`, with the read end of its pipe.
+struct Child {
+  pid_t pid = -1;
+  int fd = -1;
+};
 
-ForkedRun run_forked_with_budget(double budget_seconds,
-                                 const std::function<std::string(const std::function<void()>&)>& work) {
+Child fork_child(const std::function<std::string(const std::function<void()>&)>& work) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("verifier budget: pipe failed");
   // Buffered output would otherwise be written twice, once by each process.
@@ -75,6 +78,25 @@ ForkedRun run_forked_with_budget(double budget_seconds,
     run_child(fds[1], work);
   }
   ::close(fds[1]);
+  return {pid, fds[0]};
+}
+
+// The child's result from everything it wrote, once it has been reaped with `status`; throws its error.
+std::string child_result(const std::string& data, int status) {
+  std::size_t at = 0;
+  if (at < data.size() && data[at] == kPhaseDone) ++at;
+  if (at < data.size() && data[at] == kResult && WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    return data.substr(at + 1);
+  if (at < data.size() && data[at] == kError) throw std::runtime_error(data.substr(at + 1));
+  throw std::runtime_error("the unit's worker process ended without a result (" + describe_status(status) +
+                           ")");
+}
+
+}  // namespace
+
+ForkedRun run_forked_with_budget(double budget_seconds,
+                                 const std::function<std::string(const std::function<void()>&)>& work) {
+  const auto [pid, read_fd] = fork_child(work);
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, budget_seconds));
   std::string data;
@@ -88,29 +110,71 @@ ForkedRun run_forked_with_budget(double budget_seconds,
         timed_out = true;
         break;
       }
-      pollfd p{fds[0], POLLIN, 0};
+      pollfd p{read_fd, POLLIN, 0};
       const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
       if (r == 0 || (r < 0 && errno == EINTR)) continue;
     }
-    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    const ssize_t n = ::read(read_fd, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // EOF: the child is done (or died)
     data.append(buffer, static_cast<std::size_t>(n));
   }
-  ::close(fds[0]);
+  ::close(read_fd);
   if (timed_out) ::kill(pid, SIGKILL);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (timed_out) return ForkedRun{true, ""};
+  return ForkedRun{false, child_result(data, status)};
+}
 
-  std::size_t at = 0;
-  if (at < data.size() && data[at] == kPhaseDone) ++at;
-  if (at < data.size() && data[at] == kResult && WIFEXITED(status) && WEXITSTATUS(status) == 0)
-    return ForkedRun{false, data.substr(at + 1)};
-  if (at < data.size() && data[at] == kError) throw std::runtime_error(data.substr(at + 1));
-  throw std::runtime_error("the unit's worker process ended without a result (" + describe_status(status) +
-                           ")");
+std::vector<std::string> run_forked_batch(const std::vector<std::function<std::string()>>& works,
+                                          int parallel) {
+  std::vector<std::string> out(works.size());
+  if (parallel <= 1 || works.size() <= 1) {
+    for (std::size_t i = 0; i < works.size(); ++i) out[i] = works[i]();
+    return out;
+  }
+  struct Running {
+    Child child;
+    std::size_t index = 0;
+    std::string data;
+  };
+  std::vector<Running> running;
+  std::size_t next = 0;
+  std::string first_error;
+  char buffer[kReadChunk];
+  while (next < works.size() || !running.empty()) {
+    while (static_cast<int>(running.size()) < parallel && next < works.size()) {
+      const std::size_t i = next++;
+      running.push_back(
+          {fork_child([&works, i](const std::function<void()>&) { return works[i](); }), i, ""});
+    }
+    std::vector<pollfd> polls;
+    for (const Running& r : running) polls.push_back({r.child.fd, POLLIN, 0});
+    if (::poll(polls.data(), polls.size(), -1) < 0) continue;  // EINTR: poll again
+    for (std::size_t k = running.size(); k-- > 0;) {
+      if (polls[k].revents == 0) continue;
+      const ssize_t n = ::read(running[k].child.fd, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n > 0) {
+        running[k].data.append(buffer, static_cast<std::size_t>(n));
+        continue;
+      }
+      ::close(running[k].child.fd);  // EOF: the child is done (or died)
+      int status = 0;
+      while (::waitpid(running[k].child.pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      try {
+        out[running[k].index] = child_result(running[k].data, status);
+      } catch (const std::exception& e) {
+        if (first_error.empty()) first_error = e.what();
+      }
+      running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+  }
+  if (!first_error.empty()) throw std::runtime_error(first_error);
+  return out;
 }
 
 }  // namespace cmt

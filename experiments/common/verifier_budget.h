@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace cmt {
 
@@ -28,5 +29,12 @@ struct ForkedRun {
 // that dies otherwise is reported the same way.
 ForkedRun run_forked_with_budget(
     double budget_seconds, const std::function<std::string(const std::function<void()>& phase_done)>& work);
+
+// Each work run in a forked child, at most `parallel` at a time (the verifier is single-threaded: CGAL is
+// built without thread support, so independent verifications run in processes, not threads), and their
+// results in order. parallel <= 1 or a single work: run in this process. The same requirements as above; the
+// first child's exception is rethrown once every child has ended.
+std::vector<std::string> run_forked_batch(const std::vector<std::function<std::string()>>& works,
+                                          int parallel);
 
 }  // namespace cmt

@@ -237,6 +237,11 @@ void draw_planned(PlotCanvas& canvas, const std::vector<PlannedMotionLayer>& pla
     }
     canvas.marker(project(planned[static_cast<std::size_t>(i)].commanded, s), LegendMarker::kDiamond,
                   kPlannedMarkerRadius, color);
+    for (const AxisBox& b : planned[static_cast<std::size_t>(i)].sensed_positions) {
+      const Point2 lo = project(b.min, s), hi = project(b.max, s);
+      canvas.polyline({lo, {hi.x, lo.y}, hi, {lo.x, hi.y}}, true, kSensedPositionsLine,
+                      kPlannedCellThickness);
+    }
   }
 }
 
@@ -308,6 +313,8 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
       if (!m.pieces.empty()) canvas.add_legend({"cell of " + m.motion, color, LegendMarker::kLine});
       canvas.add_legend(
           {"command, " + m.motion + (m.pieces.empty() ? " (no cell)" : ""), color, LegendMarker::kDiamond});
+      if (!m.sensed_positions.empty())
+        canvas.add_legend({"sensed positions P_s, " + m.motion, kSensedPositionsLine, LegendMarker::kLine});
     }
   canvas.finish();
   return canvas;

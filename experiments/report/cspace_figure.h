@@ -22,11 +22,13 @@ const char* view_name(View view);  // "front", "top", "side"
 std::vector<View> views_for(const Task& task);
 
 // A planned motion's commanded positions (`cmt plan`, docs/planner.md): the convex pieces of its cell (their
-// vertices), drawn as the outlines of their projections, and the commanded position chosen in it.
+// vertices), drawn as the outlines of their projections, the commanded position chosen in it, and its
+// sensed-position set P_s (type 2 termination, Buckley Fig 6.9), drawn as box outlines.
 struct PlannedMotionLayer {
   std::string motion;
   Vec3 commanded = Vec3::Zero();
-  std::vector<std::vector<Vec3>> pieces;  // empty: the motion claims its commanded position alone
+  std::vector<std::vector<Vec3>> pieces;       // empty: the motion claims its commanded position alone
+  std::vector<AxisBox> sensed_positions = {};  // empty: sticking termination only
 };
 
 struct CSpaceFigureData {

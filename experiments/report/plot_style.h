@@ -25,6 +25,7 @@ inline const cv::Scalar kBackFaceLine = rgb(0xbdbdbd);  // faces seen from the o
 inline const cv::Scalar kGoalFill = rgb(0xc8ebd2);
 inline const cv::Scalar kGoalLine = rgb(0x009e73);  // bluish green
 inline const cv::Scalar kStartColor = rgb(0x000000);
+inline const cv::Scalar kSensedPositionsLine = rgb(0xd55e00);  // vermillion: a planned motion's P_s
 // The last motion's termination set: the one the goal is judged on.
 inline const cv::Scalar kLastMotionColor = rgb(0xe69f00);  // orange
 // Earlier motions, in order (cycled).

@@ -317,7 +317,8 @@ std::vector<FigureRef> write_extremes_figures(const std::vector<nlohmann::json>&
   return refs;
 }
 
-// A plan's motions as figure layers: each motion's commanded position and its cell's pieces (vertices).
+// A plan's motions as figure layers: each motion's commanded position, its cell's pieces (vertices) and its
+// sensed-position boxes.
 std::vector<PlannedMotionLayer> planned_layers(const nlohmann::json& run, int dimension) {
   std::vector<PlannedMotionLayer> layers;
   const auto point = [&](const nlohmann::json& p) {
@@ -334,15 +335,17 @@ std::vector<PlannedMotionLayer> planned_layers(const nlohmann::json& run, int di
       for (const nlohmann::json& v : piece.at("vertices")) vertices.push_back(point(v));
       layer.pieces.push_back(std::move(vertices));
     }
+    for (const nlohmann::json& box : m.value("spositions", nlohmann::json::array()))
+      layer.sensed_positions.push_back({point(box.at("min")), point(box.at("max"))});
     layers.push_back(std::move(layer));
   }
   return layers;
 }
 
 // Per plan result with motions and a `task_file` that loads, one figure per view
-// (figures/plan_<i>_<view>.png): the task's C-space with each motion's cell outlined and its commanded
-// position (Buckley's Figs 6.6, 6.8-6.11), added to `figures` with kind "plan". A plan whose task file does
-// not load gets no figures.
+// (figures/plan_<i>_<view>.png): the task's C-space with each motion's cell outlined, its commanded
+// position and its sensed-position set (Buckley's Figs 6.6, 6.8-6.11), added to `figures` with kind "plan". A
+// plan whose task file does not load gets no figures.
 std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& runs,
                                           const std::filesystem::path& out_dir, nlohmann::json* figures) {
   std::vector<FigureRef> refs;

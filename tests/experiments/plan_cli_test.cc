@@ -118,6 +118,14 @@ TEST(CmtPlan, CubeSensingHasAOneMotionPlanWithItsSensedPositionSet) {
   const auto ro = nlohmann::json::parse(rollouts.out);
   EXPECT_EQ(ro["successes"], 20);
   for (const auto& o : ro["outcomes"]) EXPECT_EQ(o["termination"], "position") << o;
+  // With sticking termination the goal stop by sticking near the bottom's centre plans it too, without P_s.
+  const Result sticking = run("plan " + task("cube_sensing") + " --threads 2 --json");
+  ASSERT_EQ(sticking.status, 0) << sticking.out;
+  const auto s = nlohmann::json::parse(sticking.out);
+  EXPECT_EQ(s["termination"], "sticking");
+  EXPECT_TRUE(s["spositions"].empty());
+  EXPECT_EQ(s["steps"][0]["targets"], nlohmann::json::array({"goal"}));
+  EXPECT_TRUE(s["verified"]["reliable"].get<bool>());
 }
 
 // §6.3.3: the hole from the start segment on the top face. The first motion comes from the start projection

@@ -1187,6 +1187,26 @@ TEST(Report, PlannedMotionsCellIsOutlinedAndItsCommandMarked) {
   EXPECT_NE(figure_color_at(canvas, 0.25, -1.35), color);  // inside: not filled
 }
 
+// A type 2 motion's sensed-position set (Buckley Fig 6.9) is outlined in its own color: the §6.3.2 box
+// [-.6, .6]^2 x [-1.2, -.8] in the front view (x, z).
+TEST(Report, PlannedMotionsSensedPositionsAreOutlined) {
+  const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
+  cmt::report::PlannedMotionLayer layer{"planned_1", cmt::Vec3(0, 0, -1.7), {}};
+  layer.sensed_positions = {cmt::AxisBox{cmt::Vec3(-0.6, -0.6, -1.2), cmt::Vec3(0.6, 0.6, -0.8)}};
+  const std::vector<cmt::report::PlannedMotionLayer> layers = {layer};
+  const cmt::report::CSpaceFigureData data{task.get(), {"planned_1"},  nullptr,
+                                           nullptr,    "cube planned", &layers};
+  const auto canvas = cmt::report::draw_cspace_view(data, cmt::report::View::kFront);
+  const cv::Scalar c = cmt::report::kSensedPositionsLine;
+  const int color = (static_cast<int>(c[2]) << 16) | (static_cast<int>(c[1]) << 8) | static_cast<int>(c[0]);
+  EXPECT_EQ(color, 0xd55e00);
+  EXPECT_EQ(figure_color_at(canvas, -0.6, -0.9), color);   // left side
+  EXPECT_EQ(figure_color_at(canvas, 0.6, -1.1), color);    // right side
+  EXPECT_EQ(figure_color_at(canvas, 0.3, -1.2), color);    // bottom
+  EXPECT_NE(figure_color_at(canvas, 0.3, -0.9), color);    // inside: not filled
+  EXPECT_NE(figure_color_at(canvas, -0.75, -0.9), color);  // outside
+}
+
 // `cmt report --plan`: a plan result whose task file loads gets its cells in the three C-space views, one
 // with `extremes` its success-rate figure, each referenced by the documents and listed in figures.json; a
 // later report without plans removes them.

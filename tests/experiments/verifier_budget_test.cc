@@ -5,6 +5,7 @@
 #include "experiments/common/verifier_budget.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <limits>
@@ -52,6 +53,33 @@ TEST(VerifierBudget, ChildExceptionsReachTheParentWithTheirMessage) {
     ADD_FAILURE() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), "task.yaml: strategies: unknown strategy 'x'");
+  }
+}
+
+// Five works, two children at a time: results in the works' order (the slow first one finishes last), each
+// from its own process; an exception in one child reaches the parent after the others have ended.
+TEST(ForkedBatch, ResultsComeInOrderFromSeparateProcessesAndErrorsReachTheParent) {
+  std::vector<std::function<std::string()>> works;
+  for (int i = 0; i < 5; ++i)
+    works.push_back([i] {
+      if (i == 0) std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      return std::to_string(i) + ":" + std::to_string(::getpid());
+    });
+  const std::vector<std::string> out = run_forked_batch(works, 2);
+  ASSERT_EQ(out.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(out[i].substr(0, 2), std::to_string(i) + ":");
+    EXPECT_NE(out[i].substr(2), std::to_string(::getpid()));  // not this process
+  }
+  // One at a time: in this process.
+  EXPECT_EQ(run_forked_batch({works[1]}, 2)[0], "1:" + std::to_string(::getpid()));
+  EXPECT_EQ(run_forked_batch(works, 1)[3], "3:" + std::to_string(::getpid()));
+  works[2] = []() -> std::string { throw std::runtime_error("child 2 failed"); };
+  try {
+    run_forked_batch(works, 2);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "child 2 failed");
   }
 }
 

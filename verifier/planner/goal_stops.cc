@@ -60,8 +60,9 @@ Vec3 polygon_normal(const std::vector<Vec3>& q) {
   return n.normalized();
 }
 
-// The centred axis rectangle (in the plane's two other axes) of a goal polygon on the plane x_k = level, each
-// side of the polygon moved in by `inset`, as a box 2 half_thickness thick; nothing when too small.
+// The centred axis rectangle (in the plane's two other axes) of a goal polygon on the plane x_k = level whose
+// axis box grown by `inset` stays `margin` inside every side m . x <= c (a side moves in by inset |m|_1 +
+// margin: the support of that cube along m), as a box 2 half_thickness thick; nothing when too small.
 std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, double inset,
                                      double half_thickness, double margin) {
   const Vec3 n = Vec3::Unit(k);
@@ -79,7 +80,7 @@ std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, do
         q[axis] = c[axis] + s * (end - c[axis]);
       }
       for (const HalfSpace& h : sides)
-        if (h.normal.dot(q) > h.offset - inset) return false;
+        if (h.normal.dot(q) > h.offset - inset * h.normal.lpNorm<1>() - margin) return false;
     }
     return true;
   };
@@ -155,7 +156,7 @@ std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task) {
     n.cwiseAbs().maxCoeff(&k);
     if (1 - std::abs(n[k]) > kAxisAligned) continue;
     const std::optional<AxisBox> box =
-        inscribed_box(g.points, k, eps_s + 2 * margin, eps_s > 0 ? eps_s : margin, margin);
+        inscribed_box(g.points, k, eps_s + margin, eps_s > 0 ? eps_s : margin, margin);
     if (box && senses_goal_only(task, goal_atom, *box, eps_s + margin)) out.push_back(*box);
   }
   return out;

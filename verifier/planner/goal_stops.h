@@ -35,11 +35,12 @@ std::vector<PartialGoalFace> partial_goal_faces(const LoadedTask& task, const st
 inline constexpr double kSensedSetRelativeMargin = 1e-6;
 
 // P_s for a type 2 motion that ends in the goal: per goal polygon on an axis-aligned plane, one axis box, the
-// largest axis rectangle centred in the polygon shrunk by eps_s + 2 margin (found by bisection on its
-// scale), 2 eps_s thick across the plane (every sensed position of a point on the plane's rectangle lies in
-// it). A box is kept only when every contact point (of any atom) within eps_s + margin of it lies in the
-// goal (within the surface tolerance): a wall along the goal's edge stays a margin clear. Empty when no goal
-// polygon gives one.
+// largest axis rectangle centred in the polygon (found by bisection on its scale) whose box grown by
+// eps_s + margin stays a margin inside every side (an axis-parallel side moves in by eps_s + 2 margin), 2
+// eps_s thick across the plane: a robot at a point of the rectangle shrunk by eps_s surely senses a
+// position in it. A box is kept only when every contact point (of any atom) within eps_s + margin of it
+// lies in the goal (within the surface tolerance): a wall along the goal's edge stays a margin clear. Empty
+// when no goal polygon gives one.
 std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task);
 
 // Per atom: whether the atom has a point within eps_s + margin of one of the boxes (a type 2 motion may stop

@@ -159,6 +159,7 @@ class Search {
   bool add_start_projection_arc(PlanResult& out) {
     if (!req_.start_targets || !start_expanded()) return false;
     while (next_projection_seed_ < projection_seeds().size()) {
+      announce(projection_seeds(), next_projection_seed_, {});
       const Vec3 p = projection_seeds()[next_projection_seed_++];
       ++out.start_projections;
       const std::optional<std::vector<int>> targets = req_.start_targets(p);
@@ -230,6 +231,7 @@ class Search {
       if (!arc.from_start_projection || arc.rejected || arc.heads.size() != 1 || is_goal(arc.heads[0]))
         continue;
       while (arc.next_chain_seed < seeds.size()) {
+        announce(seeds, arc.next_chain_seed, {arc.commanded});
         const Vec3 q = seeds[arc.next_chain_seed++];
         const ChainVerdict& verdict = chain_verdict({arc.commanded, q}, &out.chain_projections);
         if (verdict.ends.size() < 2 || !verdict.ends[1]) continue;
@@ -251,6 +253,18 @@ class Search {
       }
     }
     return false;
+  }
+
+  // PlanRequest::prefetch of the chains `before` + (seed) for the next lookahead seeds from `first`.
+  void announce(const std::vector<Vec3>& seeds, std::size_t first, const std::vector<Vec3>& before) const {
+    if (!req_.prefetch || req_.lookahead <= 1) return;
+    std::vector<std::vector<Vec3>> chains;
+    for (std::size_t k = first; k < seeds.size() && chains.size() < static_cast<std::size_t>(req_.lookahead);
+         ++k) {
+      chains.push_back(before);
+      chains.back().push_back(seeds[k]);
+    }
+    req_.prefetch(chains);
   }
 
   // An arc that claims no cell: one commanded position and the targets the verifier found for it.

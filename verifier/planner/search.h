@@ -61,6 +61,11 @@ struct PlanRequest {
   // motion never stops at (a wall's rim).
   bool chain_projections = true;
   int max_chain_checks = 40;  // candidates checked before the search gives up
+  // Announces the next `lookahead` chains the projections will ask confirm_chain (start_targets: one-motion
+  // chains) for, in the order they will be asked, so that they can be verified ahead several at once. The
+  // answers must not depend on it. Unset, or lookahead <= 1: nothing is announced.
+  std::function<void(const std::vector<std::vector<Vec3>>& chains)> prefetch;
+  int lookahead = 1;
 };
 
 // An arc of the state graph: a cell of commanded positions from the source state with the atoms they may

@@ -54,8 +54,8 @@ class AtomSimulation {
   int goal_stop_atom() const { return cspace_.atom_count() + 1; }
   const GoalStops& goal_stops() const { return goal_stops_; }
   const AxisBox& domain() const { return domain_; }
-  // The atoms where a motion commanded to p may stop when it starts in one of `start` (ascending; the
-  // free-space atom last when it may come to rest in free space).
+  // The atoms where a motion commanded to p may stop when it starts in one of `start` (ascending: the
+  // free-space atom when it may come to rest in free space, then the goal-stop atom, come last).
   std::vector<int> targets_at(const std::vector<int>& start, const Vec3& p);
   // A convex set of commanded positions around p (p on it; empty when p lies on the boundary of a set that
   // decides) whose every position has targets among targets_at(start, p).

@@ -13,6 +13,7 @@
 #include "verifier/planner/simulation.h"
 #include "verifier/planner/task_atoms.h"
 #include "verifier/planner/verifier_check.h"
+#include "verifier/spring.h"
 
 namespace cmt::planner {
 namespace {
@@ -100,22 +101,46 @@ TEST(GoalSensedPositions, WallsAlongTheGoalsEdgeStayClearAndASmallGoalHasNone) {
 }
 
 // A spring to p sticks on the bottom only within rho = (d + eps_s) t + eps_s of p's projection, d the depth
-// of p below z = -1, t = tan(atan(.25) + .25) ~ .5405: inside the goal |x| <= .8 when
-// |x_p| + d t <= .8 - eps_s (1 + t) ~ .4919.
+// of p below z = -1, t = tan(atan(.25) + .25) ~ .5398: inside the goal |x| <= .8 when
+// |x_p| + d t <= .8 - eps_s (1 + t) ~ .4920.
 TEST(GoalSticking, HoldsTheCommandsWhoseStickingDiscLiesInTheGoal) {
   const auto t = load("cube_sensing");
   AtomSimulation sim(t->cspace, t->task.uncertainty, stops_of(*t, false));
   const int bottom = face_with_normal(t->cspace, Vec3::UnitZ());
   const double tan_alpha = std::tan(std::atan(0.25) + 0.25);
+  ASSERT_NEAR(tan_alpha, 0.5398, 1e-4);
   const double level = 0.8 - 0.2 * (1 + tan_alpha);
   ASSERT_NEAR(level, 0.4920, 1e-4);
   EXPECT_TRUE(sim.goal_sticking(bottom).contains(Vec3(0, 0, -1.7)));     // .7 t = .378
   EXPECT_TRUE(sim.goal_sticking(bottom).contains(Vec3(0.1, 0, -1.7)));   // .478
   EXPECT_FALSE(sim.goal_sticking(bottom).contains(Vec3(0.2, 0, -1.7)));  // .578
   EXPECT_TRUE(sim.goal_sticking(bottom).contains(Vec3(0.2, 0, -1.3)));   // .2 + .3 t = .362
-  EXPECT_FALSE(sim.goal_sticking(bottom).contains(Vec3(0, 0, -2)));      // 1 t = .54
+  EXPECT_FALSE(sim.goal_sticking(bottom).contains(Vec3(0, 0, -2)));      // 1 t = .540
   // Other atoms have none.
   EXPECT_TRUE(sim.goal_sticking(face_with_normal(t->cspace, -Vec3::UnitZ())).empty());
+}
+
+// Independently of the bound: at every corner of the goal sticking set (a convex set, and the disc's centre
+// and radius are affine in p there), the verifier's own polygon of the bottom's weak sticking points
+// (face_sticking_configurations, Fig 3.16) lies in the goal square.
+TEST(GoalSticking, TheVerifiersStickingPolygonAtEveryCornerLiesInTheGoal) {
+  const auto t = load("cube_sensing");
+  AtomSimulation sim(t->cspace, t->task.uncertainty, stops_of(*t, false));
+  const int bottom = face_with_normal(t->cspace, Vec3::UnitZ());
+  const Face& face = t->cspace.faces()[t->cspace.atom_index(bottom)];
+  const CPositionSet& set = sim.goal_sticking(bottom);
+  ASSERT_FALSE(set.empty());
+  int corners = 0;
+  for (const ConvexPiece& piece : set.pieces())
+    for (const Vec3& v : piece.vertices) {
+      ++corners;
+      const FaceStickingConfigurations c = face_sticking_configurations(face, v, t->task.uncertainty);
+      for (const Vec3& x : c.weak) {
+        EXPECT_LE(std::abs(x.x()), 0.8 + 1e-9) << v.transpose();
+        EXPECT_LE(std::abs(x.y()), 0.8 + 1e-9) << v.transpose();
+      }
+    }
+  EXPECT_GE(corners, 5);  // a pyramid's apex and base at least
 }
 
 // From the start edge: the spring to (0, 0, -1.7) lands on the bottom and sticks in the goal (a goal stop);
@@ -132,7 +157,7 @@ TEST(GoalStopTargets, StickingInTheGoalOrSensingIsAGoalStop) {
   EXPECT_EQ(sticking.targets_at(start, Vec3(0.2, 0, -1.7)), std::vector<int>{bottom});
   AtomSimulation sensing(t->cspace, t->task.uncertainty, stops_of(*t, true));
   EXPECT_EQ(sensing.targets_at(start, Vec3(0.2, 0, -1.7)), (std::vector<int>{bottom, goal_stop}));
-  // The cell of (0, 0, -1.7) keeps its targets: every vertex has them too.
+  // The cell of (0, 0, -1.7) keeps its targets: so does the vertex centroid of each of its pieces.
   const CPositionSet cell = sticking.cell_at(start, Vec3(0, 0, -1.7));
   ASSERT_FALSE(cell.empty());
   for (const ConvexPiece& piece : cell.pieces()) {

@@ -1,0 +1,95 @@
+// The planner's memoized, forked chain checks (chain_verdicts.h).
+#include "experiments/plan/chain_verdicts.h"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+#include "experiments/common/verifier_budget.h"
+#include "verifier/planner/verifier_check.h"
+
+namespace cmt {
+namespace {
+
+std::vector<double> key_of(const std::vector<Vec3>& commanded) {
+  std::vector<double> key;
+  for (const Vec3& p : commanded) key.insert(key.end(), {p.x(), p.y(), p.z()});
+  return key;
+}
+
+}  // namespace
+
+ChainVerdicts::ChainVerdicts(const LoadedTask& task, const VerifyOptions& options,
+                             const MotionTermination& terminate, int parallel)
+    : task_(task), options_(options), terminate_(terminate), parallel_(parallel) {}
+
+planner::ChainVerdict ChainVerdicts::get(const std::vector<Vec3>& commanded) {
+  const std::vector<double> key = key_of(commanded);
+  const auto known = known_.find(key);
+  if (known != known_.end()) return known->second;
+  const auto t0 = std::chrono::steady_clock::now();
+  planner::ChainVerdict v = planner::verifier_chain(task_, commanded, options_, terminate_);
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  known_.emplace(key, v);
+  return v;
+}
+
+void ChainVerdicts::prefetch(const std::vector<std::vector<Vec3>>& chains) {
+  if (parallel_ <= 1) return;
+  std::vector<std::vector<Vec3>> missing;
+  for (const std::vector<Vec3>& chain : chains)
+    if (!known_.count(key_of(chain)) && std::none_of(missing.begin(), missing.end(), [&](const auto& m) {
+          return key_of(m) == key_of(chain);
+        }))
+      missing.push_back(chain);
+  if (missing.size() < 2) return;  // one chain: verified here when asked for
+  std::vector<std::function<std::string()>> works;
+  for (const std::vector<Vec3>& chain : missing)
+    works.push_back(
+        [this, chain] { return verdict_text(planner::verifier_chain(task_, chain, options_, terminate_)); });
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<std::string> results = run_forked_batch(works, parallel_);
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (std::size_t i = 0; i < missing.size(); ++i)
+    known_.emplace(key_of(missing[i]), verdict_from_text(results[i]));
+}
+
+std::string verdict_text(const planner::ChainVerdict& v) {
+  std::ostringstream out;
+  out << (v.reliable ? 1 : 0) << "\n";
+  for (const auto& ends : v.ends) {
+    if (!ends) {
+      out << "-\n";
+      continue;
+    }
+    out << "+";
+    for (int a : *ends) out << " " << a;
+    out << "\n";
+  }
+  return out.str();
+}
+
+planner::ChainVerdict verdict_from_text(const std::string& text) {
+  std::istringstream in(text);
+  planner::ChainVerdict v;
+  int reliable = 0;
+  if (!(in >> reliable)) throw std::runtime_error("chain verdict: no reliability in the child's result");
+  v.reliable = reliable != 0;
+  std::string line;
+  std::getline(in, line);  // the rest of the first line
+  while (std::getline(in, line)) {
+    if (line == "-") {
+      v.ends.push_back(std::nullopt);
+      continue;
+    }
+    std::istringstream atoms(line.substr(1));
+    std::vector<int> ends;
+    for (int a; atoms >> a;) ends.push_back(a);
+    v.ends.push_back(std::move(ends));
+  }
+  return v;
+}
+
+}  // namespace cmt

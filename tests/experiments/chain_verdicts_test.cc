@@ -1,0 +1,52 @@
+// The planner's memoized chain checks (experiments/plan/chain_verdicts.h): the text form round-trips, and
+// verdicts prefetched in forked children equal those verified in this process (the plan must not depend on
+// --threads).
+#include "experiments/plan/chain_verdicts.h"
+
+#include <gtest/gtest.h>
+
+#include "controllers/termination.h"
+#include "models/loaded_task.h"
+#include "verifier/planner/verifier_check.h"
+
+namespace cmt {
+namespace {
+
+TEST(ChainVerdictText, RoundTrips) {
+  planner::ChainVerdict v;
+  v.reliable = false;
+  v.ends = {std::vector<int>{3, 7, 28}, std::vector<int>{}, std::nullopt};
+  const planner::ChainVerdict back = verdict_from_text(verdict_text(v));
+  EXPECT_EQ(back.reliable, v.reliable);
+  EXPECT_EQ(back.ends, v.ends);
+  planner::ChainVerdict r;
+  r.reliable = true;
+  r.ends = {std::vector<int>{1}};
+  EXPECT_TRUE(verdict_from_text(verdict_text(r)).reliable);
+  EXPECT_THROW(verdict_from_text(""), std::runtime_error);
+}
+
+// Three one-motion chains on Buckley's §6.3.2 cube with its P_s: prefetched two at a time in children, then
+// asked for, they equal the verdicts of a ChainVerdicts that verifies each in this process.
+TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
+  const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
+  VerifyOptions options;
+  options.spring_model = SpringModel::kVelocity;
+  options.stop_relative_speed = kStopRelativeSpeed;
+  const MotionTermination& terminate = t->task.find_motion("p1")->terminate;
+  const std::vector<std::vector<Vec3>> chains = {
+      {Vec3(0, 0, -1.7)}, {Vec3(0.5, 0, -1.7)}, {Vec3(0, 0, -1.4)}};
+  ChainVerdicts forked(*t, options, terminate, 2), here(*t, options, terminate, 1);
+  forked.prefetch(chains);
+  here.prefetch(chains);  // one at a time: does nothing
+  for (const auto& chain : chains) {
+    const planner::ChainVerdict a = forked.get(chain), b = here.get(chain);
+    EXPECT_EQ(a.reliable, b.reliable) << chain[0].transpose();
+    EXPECT_EQ(a.ends, b.ends) << chain[0].transpose();
+  }
+  EXPECT_TRUE(here.get(chains[0]).reliable);   // the task's own p1
+  EXPECT_FALSE(here.get(chains[1]).reliable);  // off centre: may stop past the goal's edge
+}
+
+}  // namespace
+}  // namespace cmt
