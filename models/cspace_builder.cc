@@ -577,81 +577,105 @@ class CSpaceBuilder {
     return false;
   }
 
-  void make_complex() {
-    // Vertices: all corners (exactly deduplicated).
-    std::map<Point3, int, PointLess> vertex_index;
+  // The complex of the faces' sides and corners, before phantom atoms are dropped: corners exactly
+  // deduplicated, sides split at every corner on them (edges by their (smaller, larger) point index).
+  struct Incidence {
     std::vector<Point3> points;
+    std::map<std::pair<int, int>, std::vector<int>> edge_faces;  // the faces (indices) along each edge
+    std::vector<std::vector<std::pair<int, int>>> face_edges;    // per face, its edges
+    std::vector<std::set<int>> face_points;                      // per face, the points on its boundary
+  };
+
+  // The atoms' ids: faces first, then edges, then vertices, each in a stable order.
+  struct AtomOrder {
+    std::vector<int> faces;                  // face indices
+    std::vector<std::pair<int, int>> edges;  // edge keys
+    std::vector<int> vertices;               // point indices
+    std::vector<int> face_id, vertex_id;     // index -> atom id, -1 for a phantom
+    std::map<std::pair<int, int>, int> edge_id;
+  };
+
+  void make_complex() {
+    const Incidence inc = incidence();
+    const AtomOrder order = atom_order(inc);
+    emit_faces(inc, order);
+    emit_edges(inc, order);
+    emit_vertices(inc, order);
+    if (order.faces.empty())
+      throw TaskError(task_.source_file, task_.bounds ? "bounds" : "",
+                      "the free space is empty: the obstacles cover the whole workspace");
+  }
+
+  Incidence incidence() const {
+    Incidence inc;
+    std::map<Point3, int, PointLess> vertex_index;
     for (const ExactFace& f : faces_)
       for (const Point3& p : f.polygon)
-        if (vertex_index.emplace(p, static_cast<int>(points.size())).second) points.push_back(p);
-    // Edges: face sides split at every vertex on them.
-    std::map<std::pair<int, int>, std::vector<int>> edge_faces;  // by (smaller, larger) point index
-    std::vector<std::vector<std::pair<int, int>>> face_edges(faces_.size());
-    std::vector<std::set<int>> face_points(faces_.size());
-    const SegmentPointIndex point_index(points);
+        if (vertex_index.emplace(p, static_cast<int>(inc.points.size())).second) inc.points.push_back(p);
+    inc.face_edges.resize(faces_.size());
+    inc.face_points.resize(faces_.size());
+    const SegmentPointIndex point_index(inc.points);
     for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
       const auto& poly = faces_[fi].polygon;
       for (std::size_t k = 0; k < poly.size(); ++k) {
         const Point3& a = poly[k];
         const Point3& b = poly[(k + 1) % poly.size()];
-        std::vector<int> inner;
-        for (const int pi : point_index.candidates(a, b)) {
-          const Point3& p = points[pi];
-          if (p != a && p != b && CGAL::collinear(a, p, b) &&
-              CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
-            inner.push_back(pi);
-        }
-        std::sort(inner.begin(), inner.end(),
-                  [&](int x, int y) { return CGAL::has_smaller_distance_to_point(a, points[x], points[y]); });
         std::vector<int> on{vertex_index.at(a)};
+        const std::vector<int> inner = points_inside_side(inc.points, point_index, a, b);
         on.insert(on.end(), inner.begin(), inner.end());
         on.push_back(vertex_index.at(b));
         for (std::size_t s = 0; s + 1 < on.size(); ++s) {
           const auto key = std::minmax(on[s], on[s + 1]);
-          auto& list = edge_faces[{key.first, key.second}];
+          auto& list = inc.edge_faces[{key.first, key.second}];
           if (list.empty() || list.back() != static_cast<int>(fi)) list.push_back(static_cast<int>(fi));
-          face_edges[fi].push_back({key.first, key.second});
-          face_points[fi].insert(on[s]);
+          inc.face_edges[fi].push_back({key.first, key.second});
+          inc.face_points[fi].insert(on[s]);
         }
       }
     }
+    return inc;
+  }
 
-    // Keep the real atoms, in a stable order: faces by (normal, offset, first corner), vertices and edges by
-    // coordinates.
-    std::vector<int> face_order;
+  // The points strictly inside the side (a, b), ordered from a (exact predicates).
+  static std::vector<int> points_inside_side(const std::vector<Point3>& points,
+                                             const SegmentPointIndex& index, const Point3& a,
+                                             const Point3& b) {
+    std::vector<int> inner;
+    for (const int pi : index.candidates(a, b)) {
+      const Point3& p = points[pi];
+      if (p != a && p != b && CGAL::collinear(a, p, b) &&
+          CGAL::collinear_are_strictly_ordered_along_line(a, p, b))
+        inner.push_back(pi);
+    }
+    std::sort(inner.begin(), inner.end(),
+              [&](int x, int y) { return CGAL::has_smaller_distance_to_point(a, points[x], points[y]); });
+    return inner;
+  }
+
+  // The real atoms, in a stable order: faces by (normal, offset, lowest corner), vertices and edges by
+  // coordinates; phantom faces (on walls the bounds only add) and atoms on them are dropped.
+  AtomOrder atom_order(const Incidence& inc) const {
+    AtomOrder order;
     for (std::size_t i = 0; i < faces_.size(); ++i)
-      if (!faces_[i].phantom) face_order.push_back(static_cast<int>(i));
-    auto face_key = [&](int i) {
-      const Vector3 n = faces_[i].plane.orthogonal_vector();
-      const double len = std::sqrt(CGAL::to_double(n.squared_length()));
-      std::vector<double> key{-CGAL::to_double(n.x()) / len, -CGAL::to_double(n.y()) / len,
-                              -CGAL::to_double(n.z()) / len, CGAL::to_double(faces_[i].plane.d()) / len};
-      Point3 lowest = faces_[i].polygon[0];
-      for (const Point3& p : faces_[i].polygon)
-        if (PointLess()(p, lowest)) lowest = p;
-      const Vec3 l = to_double(lowest);
-      key.insert(key.end(), {l.x(), l.y(), l.z()});
-      return key;
-    };
+      if (!faces_[i].phantom) order.faces.push_back(static_cast<int>(i));
     std::vector<std::vector<double>> face_keys(faces_.size());
-    for (const int i : face_order) face_keys[i] = face_key(i);
-    std::sort(face_order.begin(), face_order.end(),
+    for (const int i : order.faces) face_keys[i] = face_sort_key(faces_[i]);
+    std::sort(order.faces.begin(), order.faces.end(),
               [&](int a, int b) { return face_keys[a] < face_keys[b]; });
 
-    std::vector<int> vertex_order;
+    const std::vector<Point3>& points = inc.points;
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (!on_phantom_wall(points[i])) vertex_order.push_back(static_cast<int>(i));
-    std::sort(vertex_order.begin(), vertex_order.end(),
+      if (!on_phantom_wall(points[i])) order.vertices.push_back(static_cast<int>(i));
+    std::sort(order.vertices.begin(), order.vertices.end(),
               [&](int a, int b) { return PointLess()(points[a], points[b]); });
 
-    std::vector<std::pair<int, int>> edge_order;
-    for (const auto& [key, fl] : edge_faces) {
+    for (const auto& [key, fl] : inc.edge_faces) {
       bool real_face = false;
       for (int f : fl) real_face = real_face || !faces_[f].phantom;
       if (real_face && !on_same_phantom_wall(points[key.first], points[key.second]))
-        edge_order.push_back(key);
+        order.edges.push_back(key);
     }
-    std::sort(edge_order.begin(), edge_order.end(), [&](const auto& a, const auto& b) {
+    std::sort(order.edges.begin(), order.edges.end(), [&](const auto& a, const auto& b) {
       const Point3 &a0 = points[a.first], &a1 = points[a.second], &b0 = points[b.first],
                    &b1 = points[b.second];
       const Point3& alo = PointLess()(a0, a1) ? a0 : a1;
@@ -662,17 +686,37 @@ class CSpaceBuilder {
       return PointLess()(ahi, bhi);
     });
 
-    const int nf = static_cast<int>(face_order.size());
-    const int ne = static_cast<int>(edge_order.size());
-    std::vector<int> face_id(faces_.size(), -1), vertex_id(points.size(), -1);
-    for (int i = 0; i < nf; ++i) face_id[face_order[i]] = i;
-    for (int i = 0; i < static_cast<int>(vertex_order.size()); ++i) vertex_id[vertex_order[i]] = nf + ne + i;
-    std::map<std::pair<int, int>, int> edge_id;
-    for (int i = 0; i < ne; ++i) edge_id[edge_order[i]] = nf + i;
+    const int nf = static_cast<int>(order.faces.size());
+    const int ne = static_cast<int>(order.edges.size());
+    order.face_id.assign(faces_.size(), -1);
+    order.vertex_id.assign(points.size(), -1);
+    for (int i = 0; i < nf; ++i) order.face_id[order.faces[i]] = i;
+    for (int i = 0; i < static_cast<int>(order.vertices.size()); ++i)
+      order.vertex_id[order.vertices[i]] = nf + ne + i;
+    for (int i = 0; i < ne; ++i) order.edge_id[order.edges[i]] = nf + i;
+    return order;
+  }
 
+  // A face's place in the order: its unit normal (negated), offset and lowest corner, in doubles.
+  static std::vector<double> face_sort_key(const ExactFace& f) {
+    const Vector3 n = f.plane.orthogonal_vector();
+    const double len = std::sqrt(CGAL::to_double(n.squared_length()));
+    std::vector<double> key{-CGAL::to_double(n.x()) / len, -CGAL::to_double(n.y()) / len,
+                            -CGAL::to_double(n.z()) / len, CGAL::to_double(f.plane.d()) / len};
+    Point3 lowest = f.polygon[0];
+    for (const Point3& p : f.polygon)
+      if (PointLess()(p, lowest)) lowest = p;
+    const Vec3 l = to_double(lowest);
+    key.insert(key.end(), {l.x(), l.y(), l.z()});
+    return key;
+  }
+
+  // The faces in doubles with their edges and vertices, and the C-space's scale: the diagonal of their
+  // bounding box (1 without faces).
+  void emit_faces(const Incidence& inc, const AtomOrder& order) {
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (int i = 0; i < nf; ++i) {
-      const ExactFace& ef = faces_[face_order[i]];
+    for (int i = 0; i < static_cast<int>(order.faces.size()); ++i) {
+      const ExactFace& ef = faces_[order.faces[i]];
       Face f;
       f.id = i;
       const Vector3 n = ef.plane.orthogonal_vector();
@@ -688,47 +732,55 @@ class CSpaceBuilder {
           hi[k] = std::max(hi[k], f.polygon.back()[k]);
         }
       }
-      for (const auto& key : face_edges[face_order[i]])
-        if (auto it = edge_id.find(key); it != edge_id.end()) f.edges.push_back(it->second);
-      for (int p : face_points[face_order[i]])
-        if (vertex_id[p] >= 0) f.vertices.push_back(vertex_id[p]);
+      for (const auto& key : inc.face_edges[order.faces[i]])
+        if (auto it = order.edge_id.find(key); it != order.edge_id.end()) f.edges.push_back(it->second);
+      for (int p : inc.face_points[order.faces[i]])
+        if (order.vertex_id[p] >= 0) f.vertices.push_back(order.vertex_id[p]);
       std::sort(f.edges.begin(), f.edges.end());
       std::sort(f.vertices.begin(), f.vertices.end());
       out_.faces_.push_back(std::move(f));
     }
-    for (int i = 0; i < ne; ++i) {
-      const auto [pa, pb] = edge_order[i];
+    double diag2 = 0;
+    for (int k = 0; k < 3; ++k) diag2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    out_.scale_ = order.faces.empty() ? 1.0 : std::sqrt(diag2);
+  }
+
+  // The edges, each from its lower end to its upper one (PointLess), with its faces and shape.
+  void emit_edges(const Incidence& inc, const AtomOrder& order) {
+    const int nf = static_cast<int>(order.faces.size());
+    for (int i = 0; i < static_cast<int>(order.edges.size()); ++i) {
+      const auto [pa, pb] = order.edges[i];
       Edge e;
       e.id = nf + i;
-      const bool swap = !PointLess()(points[pa], points[pb]);
+      const bool swap = !PointLess()(inc.points[pa], inc.points[pb]);
       const int a = swap ? pb : pa, b = swap ? pa : pb;
-      e.a = to_double(points[a]);
-      e.b = to_double(points[b]);
-      e.vertex_a = vertex_id[a];
-      e.vertex_b = vertex_id[b];
-      for (int f : edge_faces.at(edge_order[i]))
-        if (face_id[f] >= 0) e.faces.push_back(face_id[f]);
+      e.a = to_double(inc.points[a]);
+      e.b = to_double(inc.points[b]);
+      e.vertex_a = order.vertex_id[a];
+      e.vertex_b = order.vertex_id[b];
+      const std::vector<int>& along = inc.edge_faces.at(order.edges[i]);
+      for (int f : along)
+        if (order.face_id[f] >= 0) e.faces.push_back(order.face_id[f]);
       std::sort(e.faces.begin(), e.faces.end());
-      e.shape = classify_edge(edge_faces.at(edge_order[i]), points[a], points[b]);
+      e.shape = classify_edge(along, inc.points[a], inc.points[b]);
       out_.edges_.push_back(std::move(e));
     }
-    for (std::size_t i = 0; i < vertex_order.size(); ++i) {
+  }
+
+  // The vertices with the faces and edges at them (after emit_faces and emit_edges).
+  void emit_vertices(const Incidence& inc, const AtomOrder& order) {
+    const int first = static_cast<int>(order.faces.size() + order.edges.size());
+    for (std::size_t i = 0; i < order.vertices.size(); ++i) {
       Vertex v;
-      v.id = nf + ne + static_cast<int>(i);
-      v.point = to_double(points[vertex_order[i]]);
+      v.id = first + static_cast<int>(i);
+      v.point = to_double(inc.points[order.vertices[i]]);
       out_.vertices_.push_back(std::move(v));
     }
     for (const Face& f : out_.faces_)
-      for (int v : f.vertices) out_.vertices_[v - nf - ne].faces.push_back(f.id);
+      for (int v : f.vertices) out_.vertices_[v - first].faces.push_back(f.id);
     for (const Edge& e : out_.edges_)
       for (int v : {e.vertex_a, e.vertex_b})
-        if (v >= 0) out_.vertices_[v - nf - ne].edges.push_back(e.id);
-    double diag2 = 0;
-    for (int k = 0; k < 3; ++k) diag2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    out_.scale_ = nf > 0 ? std::sqrt(diag2) : 1.0;
-    if (nf == 0)
-      throw TaskError(task_.source_file, task_.bounds ? "bounds" : "",
-                      "the free space is empty: the obstacles cover the whole workspace");
+        if (v >= 0) out_.vertices_[v - first].edges.push_back(e.id);
   }
 
   // Buckley's convex/concave edges, decided exactly: face 1 lies on the free side of face 2's plane ⇒

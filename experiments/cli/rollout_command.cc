@@ -182,17 +182,78 @@ RolloutOutcome run_error_vector(std::shared_ptr<const RolloutScene> scene, const
   return runner.run(strategy, errors, 0);
 }
 
+struct RolloutCli {
+  std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories, errors;
+  std::vector<std::string> world;
+  int n = 100;
+  std::uint64_t seed = 1;
+  int threads = 0;
+};
+
+// The simulation options the flags ask for; --controller position takes springs only.
+SimOptions rollout_sim_options(const RolloutCli& o, const LoadedTask& task, const Strategy& strategy) {
+  SimOptions options;
+  options.form = *parse_controller_form(o.controller);
+  options.mode = *parse_sample_mode(o.mode);
+  options.record_trajectory = !o.trajectories.empty();
+  if (options.form == ControllerForm::kPosition)
+    for (const std::string& name : strategy.motions) {
+      const Motion* m = task.task.find_motion(name);
+      if (m != nullptr && m->kind == Motion::Kind::kDamper)
+        throw TaskError(task.task.source_file, "motions." + name,
+                        "--controller position implements generalized springs only (Buckley eq. 3.25); '" +
+                            name + "' is a damper");
+    }
+  return options;
+}
+
+// The rollouts (sampled, or the one --errors vector), with a progress bar on a terminal.
+std::vector<RolloutOutcome> run_rollout_batch(const RolloutCli& o,
+                                              const std::shared_ptr<const RolloutScene>& scene,
+                                              const Strategy& strategy, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  std::function<void(int)> progress;
+  const bool bar = isatty(STDERR_FILENO);
+  if (bar) progress = [&](int done) { draw_progress(done, o.n, start); };
+  std::vector<RolloutOutcome> results =
+      o.errors.empty() ? run_rollouts(scene, strategy, o.n, o.seed, threads, progress)
+                       : std::vector<RolloutOutcome>{run_error_vector(scene, strategy, o.errors)};
+  if (bar) std::fprintf(stderr, "\n");
+  return results;
+}
+
+void run_rollout_command(RolloutCli o, CommandState& state) {
+  if (!o.errors.empty()) o.n = 1;
+  check_rollout_sampling_options(o.n, o.threads);
+  const auto task = task_in_world(load_task(o.task), o.world);
+  const Strategy& strategy = task->task.strategy_named(o.strategy);
+  const SimOptions options = rollout_sim_options(o, *task, strategy);
+  const int threads =
+      o.threads > 0 ? o.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const auto start = std::chrono::steady_clock::now();
+  const auto scene = RolloutScene::build(task, options);
+  const std::vector<RolloutOutcome> results = run_rollout_batch(o, scene, strategy, threads);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (!o.csv.empty()) write_csv(o.csv, *task, results);
+  if (!o.trajectories.empty()) write_trajectories(o.trajectories, results);
+  nlohmann::json j = rollouts_json({*task, *scene, strategy, options, o.seed, threads, seconds}, results);
+  if (!o.errors.empty()) j["errors"] = o.errors;
+  const int successes = j["successes"], unstable = j["unstable"];
+  if (state.json) {
+    print_json(j);
+  } else {
+    std::cout << task->task.name << " / " << strategy.name << " (" << controller_form_name(options.form)
+              << ", " << sample_mode_name(options.mode) << ", seed " << o.seed << "): " << successes << "/"
+              << o.n << " succeeded, " << unstable << " unstable, " << seconds << " s\n";
+  }
+  state.exit_status = successes == o.n ? kExitSuccess : kExitFailureFound;
+}
+
 }  // namespace
 
 void add_rollout_command(CLI::App& app, CommandState& state) {
-  struct Options {
-    std::string task, strategy, mode = "uniform", controller = "admittance", csv, trajectories, errors;
-    std::vector<std::string> world;
-    int n = 100;
-    std::uint64_t seed = 1;
-    int threads = 0;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<RolloutCli>();
   auto* cmd = app.add_subcommand("rollout", "Monte Carlo MuJoCo rollouts of a strategy under sampled errors");
   cmd->add_option("TASK", o->task, "task YAML file")->required();
   cmd->add_option("--strategy", o->strategy, "strategy name (from the task file)")->required();
@@ -214,50 +275,7 @@ void add_rollout_command(CLI::App& app, CommandState& state) {
                   "run one rollout under this error vector (comma-separated numbers in [0, 1], as `cmt "
                   "falsify` prints them; docs/falsify.md) instead of sampled errors");
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
-  cmd->callback([o, &state] {
-    if (!o->errors.empty()) o->n = 1;
-    check_rollout_sampling_options(o->n, o->threads);
-    const auto task = task_in_world(load_task(o->task), o->world);
-    const Strategy* strategy = &task->task.strategy_named(o->strategy);
-    SimOptions options;
-    options.form = *parse_controller_form(o->controller);
-    options.mode = *parse_sample_mode(o->mode);
-    options.record_trajectory = !o->trajectories.empty();
-    if (options.form == ControllerForm::kPosition)
-      for (const std::string& name : strategy->motions) {
-        const Motion* m = task->task.find_motion(name);
-        if (m != nullptr && m->kind == Motion::Kind::kDamper)
-          throw TaskError(task->task.source_file, "motions." + name,
-                          "--controller position implements generalized springs only (Buckley eq. 3.25); '" +
-                              name + "' is a damper");
-      }
-    const int threads =
-        o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    const auto start = std::chrono::steady_clock::now();
-    const auto scene = RolloutScene::build(task, options);
-    std::function<void(int)> progress;
-    const bool bar = isatty(STDERR_FILENO);
-    if (bar) progress = [&](int done) { draw_progress(done, o->n, start); };
-    const std::vector<RolloutOutcome> results =
-        o->errors.empty() ? run_rollouts(scene, *strategy, o->n, o->seed, threads, progress)
-                          : std::vector<RolloutOutcome>{run_error_vector(scene, *strategy, o->errors)};
-    if (bar) std::fprintf(stderr, "\n");
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    if (!o->csv.empty()) write_csv(o->csv, *task, results);
-    if (!o->trajectories.empty()) write_trajectories(o->trajectories, results);
-    nlohmann::json j = rollouts_json({*task, *scene, *strategy, options, o->seed, threads, seconds}, results);
-    if (!o->errors.empty()) j["errors"] = o->errors;
-    const int n = o->n, successes = j["successes"], unstable = j["unstable"];
-    if (state.json) {
-      print_json(j);
-    } else {
-      std::cout << task->task.name << " / " << strategy->name << " (" << controller_form_name(options.form)
-                << ", " << sample_mode_name(options.mode) << ", seed " << o->seed << "): " << successes << "/"
-                << n << " succeeded, " << unstable << " unstable, " << seconds << " s\n";
-    }
-    state.exit_status = successes == n ? kExitSuccess : kExitFailureFound;
-  });
+  cmd->callback([o, &state] { run_rollout_command(*o, state); });
 }
 
 }  // namespace cmt
