@@ -12,6 +12,7 @@
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/edr_figure.h"
 #include "experiments/report/extremes_figure.h"
+#include "experiments/report/plan_graph_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
@@ -344,7 +345,8 @@ std::vector<PlannedMotionLayer> planned_layers(const nlohmann::json& run, int di
 
 // Per plan result with motions and a `task_file` that loads, one figure per view
 // (figures/plan_<i>_<view>.png): the task's C-space with each motion's cell outlined, its commanded
-// position and its sensed-position set (Buckley's Figs 6.6, 6.8-6.11), added to `figures` with kind "plan". A
+// position and its sensed-position set (Buckley's Figs 6.6, 6.8-6.11), and the plan as a graph
+// (figures/plan_<i>_graph.png), added to `figures` with kind "plan". A
 // plan whose task file does not load gets no figures.
 std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& runs,
                                           const std::filesystem::path& out_dir, nlohmann::json* figures) {
@@ -373,6 +375,13 @@ std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& run
           canvas, out_dir, file,
           task->task.name + ": planned motions' cpositions and commands, " + view_name(view) + " view",
           "plan", refs, figures);
+    }
+    if (const auto graph = draw_plan_graph(run, task->task.name + " plan: states and motions")) {
+      const std::string file =
+          std::string(kFigureDir) + "/" + kPlanFigurePrefix + std::to_string(i) + "_graph.png";
+      save_report_figure(*graph, out_dir, file,
+                         task->task.name + ": the plan as a graph of states and motions", "plan", refs,
+                         figures);
     }
   }
   return refs;

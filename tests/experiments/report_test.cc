@@ -24,6 +24,7 @@
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/edr_figure.h"
 #include "experiments/report/extremes_figure.h"
+#include "experiments/report/plan_graph_figure.h"
 #include "experiments/report/plot_style.h"
 #include "experiments/report/report_documents.h"
 #include "experiments/report/report_table.h"
@@ -1185,6 +1186,49 @@ TEST(Report, PlannedMotionsCellIsOutlinedAndItsCommandMarked) {
   EXPECT_EQ(figure_color_at(canvas, -0.5, -1.4), color);   // the outline's left side (x = -0.5)
   EXPECT_EQ(figure_color_at(canvas, 0.25, -1.2), color);   // its top (z = -1.2)
   EXPECT_NE(figure_color_at(canvas, 0.25, -1.35), color);  // inside: not filled
+}
+
+// The T-slot plan (§6.3.5) as a graph: f6 -planned_1-> f12 -planned_2-> two goal heads; columns are the
+// motions done, the heads one row apart; the leaves drawn as goals, the others as states, with arrows
+// between.
+TEST(Report, PlanGraphPutsEachHeadOneColumnRightOfItsStepsState) {
+  const json run = {
+      {"task", "tslot"},
+      {"start_states", json::array({json::array({"f6"})})},
+      {"steps", json::array({{{"state", {"f6"}}, {"motion", "planned_1"}, {"heads", {{"f12"}}}},
+                             {{"state", {"f12"}},
+                              {"motion", "planned_2"},
+                              {"heads", {{"f13", "e22", "e23", "v10"}, {"f13", "e23", "e36", "v19"}}}}})}};
+  const cmt::report::PlanGraph g = cmt::report::plan_graph(run);
+  ASSERT_EQ(g.nodes.size(), 4u);
+  EXPECT_EQ(g.nodes[0].label, "f6");
+  EXPECT_EQ(g.nodes[0].column, 0);
+  EXPECT_FALSE(g.nodes[0].goal);
+  EXPECT_EQ(g.nodes[1].label, "f12");
+  EXPECT_EQ(g.nodes[1].column, 1);
+  EXPECT_FALSE(g.nodes[1].goal);
+  EXPECT_EQ(g.nodes[2].label, "f13, e22, e23, v10");
+  EXPECT_EQ(g.nodes[2].column, 2);
+  EXPECT_EQ(g.nodes[2].row, 0);
+  EXPECT_EQ(g.nodes[3].row, 1);
+  EXPECT_TRUE(g.nodes[2].goal);
+  EXPECT_TRUE(g.nodes[3].goal);
+  ASSERT_EQ(g.edges.size(), 3u);
+  EXPECT_EQ(g.edges[0].motion, "planned_1");
+  EXPECT_EQ(g.edges[2].from, 1);
+  EXPECT_EQ(g.edges[2].to, 3);
+
+  const auto canvas = cmt::report::draw_plan_graph(run, "tslot plan");
+  ASSERT_TRUE(canvas.has_value());
+  const auto rgb_of = [](const cv::Scalar& c) {
+    return (static_cast<int>(c[2]) << 16) | (static_cast<int>(c[1]) << 8) | static_cast<int>(c[0]);
+  };
+  const double inside = 0.75 * cmt::report::kPlanNodeHalfHeight;  // above the label, inside the box
+  EXPECT_EQ(figure_color_at(*canvas, 0, inside), 0xe8eef7);       // a state's fill
+  EXPECT_EQ(figure_color_at(*canvas, 2, -1 + inside), rgb_of(cmt::report::kGoalFill));
+  EXPECT_EQ(figure_color_at(*canvas, 0.45, 0), 0x000000);  // the arrow f6 -> f12
+  EXPECT_NE(figure_color_at(*canvas, 1, -1), 0x000000);    // nothing below f12
+  EXPECT_FALSE(cmt::report::draw_plan_graph(json{{"steps", json::array()}}, "none").has_value());
 }
 
 // A type 2 motion's sensed-position set (Buckley Fig 6.9) is outlined in its own color: the §6.3.2 box
