@@ -45,4 +45,50 @@ std::vector<Arc> compose_type1(const std::vector<Arc>& weak_arcs) {
   return merge_identical_targets(composed);
 }
 
+namespace {
+
+bool empty(const Type2Arc& a) { return a.cpositions.empty() || a.spositions.empty(); }
+
+// Arcs with identical targets and identical sets merged: the same targets with one set equal are united in
+// the other (an exact merge; Theorem 6.2 allows the overlap); empties dropped.
+std::vector<Type2Arc> merge_type2(const std::vector<Type2Arc>& arcs) {
+  std::vector<Type2Arc> out;
+  for (const Type2Arc& arc : arcs) {
+    if (empty(arc)) continue;
+    const bool duplicate = std::any_of(out.begin(), out.end(), [&](const Type2Arc& o) {
+      return o.targets == arc.targets && o.cpositions.minus(arc.cpositions).empty() &&
+             arc.cpositions.minus(o.cpositions).empty() && o.spositions.minus(arc.spositions).empty() &&
+             arc.spositions.minus(o.spositions).empty();
+    });
+    if (!duplicate) out.push_back(arc);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Type2Arc> compose_type2(const std::vector<Type2Arc>& weak_arcs) {
+  std::vector<Type2Arc> composed;
+  for (const Type2Arc& weak : weak_arcs) {
+    if (empty(weak)) continue;
+    std::vector<Type2Arc> alpha = {weak};  // α's remainders not yet composed with every β
+    std::vector<Type2Arc> next;
+    for (const Type2Arc& beta : composed) {
+      std::vector<Type2Arc> remainders;
+      for (const Type2Arc& a : alpha) {
+        next.push_back({target_union(a.targets, beta.targets), a.cpositions.intersect(beta.cpositions),
+                        a.spositions.intersect(beta.spositions)});
+        remainders.push_back({a.targets, a.cpositions.minus(beta.cpositions), a.spositions});
+        remainders.push_back({a.targets, a.cpositions, a.spositions.minus(beta.spositions)});
+      }
+      next.push_back({beta.targets, beta.cpositions.minus(weak.cpositions), beta.spositions});
+      next.push_back({beta.targets, beta.cpositions, beta.spositions.minus(weak.spositions)});
+      alpha = merge_type2(remainders);
+    }
+    next.insert(next.end(), alpha.begin(), alpha.end());
+    composed = merge_type2(next);
+  }
+  return composed;
+}
+
 }  // namespace cmt::planner
