@@ -69,9 +69,9 @@ std::shared_ptr<const LoadedTask> task_with_overrides(const PlanCli& cli) {
 nlohmann::json atom_names(const CSpace& c, const std::vector<int>& atoms) {
   nlohmann::json names = nlohmann::json::array();
   for (int a : atoms)
-    names.push_back(a == c.atom_count()       ? std::string("free")
-                    : a == c.atom_count() + 1 ? std::string("goal")
-                                              : c.atom_name(a));
+    names.push_back(a == c.atom_count()               ? std::string("free")
+                    : a == planner::goal_stop_atom(c) ? std::string("goal")
+                                                      : c.atom_name(a));
   return names;
 }
 

@@ -19,6 +19,10 @@
 
 namespace cmt::planner {
 
+// The planner's target for stops surely inside the goal on atoms that are not goal atoms: the id after the
+// free-space atom (atom_count()).
+inline int goal_stop_atom(const CSpace& cspace) { return cspace.atom_count() + 1; }
+
 // A goal polygon lying on a face that is not a goal atom: the face's atom id and the polygon's sides as
 // in-plane half-spaces (m . x <= c, m a unit vector in the face's plane).
 struct PartialGoalFace {

@@ -51,7 +51,7 @@ class AtomSimulation {
 
   int free_atom() const { return cspace_.atom_count(); }
   // The target of stops surely inside the goal on atoms that are not goal atoms.
-  int goal_stop_atom() const { return cspace_.atom_count() + 1; }
+  int goal_stop_atom() const { return planner::goal_stop_atom(cspace_); }
   const GoalStops& goal_stops() const { return goal_stops_; }
   const AxisBox& domain() const { return domain_; }
   // The atoms where a motion commanded to p may stop when it starts in one of `start` (ascending: the

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "verifier/planner/goal_stops.h"
 #include "verifier/planner/task_atoms.h"
 
 namespace cmt::planner {
@@ -34,16 +35,14 @@ std::optional<std::vector<int>> step_ends(const LoadedTask& task, const std::vec
                                           const VerifyStep& step) {
   if (step.may_not_terminate || !step.slide_forever.empty() || step.fallback || step.free_termination)
     return std::nullopt;
+  // One containment test for the whole set: a non-goal atom with no piece outside lies in the goal.
+  std::vector<bool> outside(goal_atom.size(), false);
+  for (const ReachedPiece& piece : pieces_outside_goal(task, step.termination))
+    outside[static_cast<std::size_t>(piece.atom)] = true;
   std::vector<int> ends;
   for (int a : step.termination.atoms()) {
-    if (goal_atom[static_cast<std::size_t>(a)]) {
-      ends.push_back(a);
-      continue;
-    }
-    std::vector<bool> keep(goal_atom.size(), false);
-    keep[static_cast<std::size_t>(a)] = true;
-    const bool inside = pieces_outside_goal(task, step.termination.restricted(keep)).empty();
-    ends.push_back(inside ? task.cspace.atom_count() + 1 : a);
+    const bool stays_atom = goal_atom[static_cast<std::size_t>(a)] || outside[static_cast<std::size_t>(a)];
+    ends.push_back(stays_atom ? a : goal_stop_atom(task.cspace));
   }
   std::sort(ends.begin(), ends.end());
   ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
