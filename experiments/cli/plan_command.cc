@@ -201,6 +201,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   const Uncertainty& u = task->task.uncertainty;
   planner::PlanRequest request;
   request.start_atoms = planner::start_atoms(*task);
+  request.start_point = planner::region_centroid(task->task.start);
   request.goal_atom = planner::goal_atoms(*task);
   planner::GoalStops stops;
   stops.partial_faces = planner::partial_goal_faces(*task, request.goal_atom);
@@ -239,6 +240,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
         "outside the goal (docs/planner.md, \"Goal stops\")";
   else
     plan = planner::plan_sticking(simulation, c, request);
+  verdicts.stop();  // checks verified ahead that the search did not need
   const double search_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json out = {{"task", task->task.name},

@@ -128,53 +128,44 @@ ForkedRun run_forked_with_budget(double budget_seconds,
   return ForkedRun{false, child_result(data, status)};
 }
 
-std::vector<std::string> run_forked_batch(const std::vector<std::function<std::string()>>& works,
-                                          int parallel) {
-  std::vector<std::string> out(works.size());
-  if (parallel <= 1 || works.size() <= 1) {
-    for (std::size_t i = 0; i < works.size(); ++i) out[i] = works[i]();
-    return out;
+ForkedWork::ForkedWork(const std::function<std::string()>& work) {
+  const Child child = fork_child([&work](const std::function<void()>&) { return work(); });
+  pid_ = child.pid;
+  fd_ = child.fd;
+}
+
+ForkedWork::~ForkedWork() {
+  if (ended_) return;
+  ::close(fd_);
+  ::kill(pid_, SIGKILL);
+  while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
   }
-  struct Running {
-    Child child;
-    std::size_t index = 0;
-    std::string data;
-  };
-  std::vector<Running> running;
-  std::size_t next = 0;
-  std::string first_error;
+}
+
+bool ForkedWork::poll(bool block) {
   char buffer[kReadChunk];
-  while (next < works.size() || !running.empty()) {
-    while (static_cast<int>(running.size()) < parallel && next < works.size()) {
-      const std::size_t i = next++;
-      running.push_back(
-          {fork_child([&works, i](const std::function<void()>&) { return works[i](); }), i, ""});
+  while (!ended_) {
+    pollfd p{fd_, POLLIN, 0};
+    const int r = ::poll(&p, 1, block ? -1 : 0);
+    if (r < 0 && errno == EINTR) continue;
+    if (r == 0) return false;  // nothing to read yet (not blocking)
+    const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n > 0) {
+      data_.append(buffer, static_cast<std::size_t>(n));
+      continue;
     }
-    std::vector<pollfd> polls;
-    for (const Running& r : running) polls.push_back({r.child.fd, POLLIN, 0});
-    if (::poll(polls.data(), polls.size(), -1) < 0) continue;  // EINTR: poll again
-    for (std::size_t k = running.size(); k-- > 0;) {
-      if (polls[k].revents == 0) continue;
-      const ssize_t n = ::read(running[k].child.fd, buffer, sizeof buffer);
-      if (n < 0 && errno == EINTR) continue;
-      if (n > 0) {
-        running[k].data.append(buffer, static_cast<std::size_t>(n));
-        continue;
-      }
-      ::close(running[k].child.fd);  // EOF: the child is done (or died)
-      int status = 0;
-      while (::waitpid(running[k].child.pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      try {
-        out[running[k].index] = child_result(running[k].data, status);
-      } catch (const std::exception& e) {
-        if (first_error.empty()) first_error = e.what();
-      }
-      running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+    ::close(fd_);  // EOF: the child is done (or died)
+    while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
     }
+    ended_ = true;
   }
-  if (!first_error.empty()) throw std::runtime_error(first_error);
-  return out;
+  return true;
+}
+
+std::string ForkedWork::result() const {
+  if (!ended_) throw std::logic_error("ForkedWork::result before the child ended");
+  return child_result(data_, status_);
 }
 
 }  // namespace cmt

@@ -30,11 +30,25 @@ struct ForkedRun {
 ForkedRun run_forked_with_budget(
     double budget_seconds, const std::function<std::string(const std::function<void()>& phase_done)>& work);
 
-// Each work run in a forked child, at most `parallel` at a time (the verifier is single-threaded: CGAL is
-// built without thread support, so independent verifications run in processes, not threads), and their
-// results in order. parallel <= 1 or a single work: run in this process. The same requirements as above; the
-// first child's exception is rethrown once every child has ended.
-std::vector<std::string> run_forked_batch(const std::vector<std::function<std::string()>>& works,
-                                          int parallel);
+// One work running in a forked child (the verifier's checks the planner announces ahead, collected when asked
+// for), with the same requirements as above. Destroying a work whose child has not ended kills it (SIGKILL)
+// and reaps it.
+class ForkedWork {
+ public:
+  explicit ForkedWork(const std::function<std::string()>& work);
+  ~ForkedWork();
+  ForkedWork(const ForkedWork&) = delete;
+  ForkedWork& operator=(const ForkedWork&) = delete;
+
+  // Reads what the child has written; `block`: until it ends. True once it has ended (and been reaped).
+  bool poll(bool block);
+  // The child's result once poll() returned true; its exception, or its death, as std::runtime_error.
+  std::string result() const;
+
+ private:
+  int pid_ = -1, fd_ = -1, status_ = 0;
+  bool ended_ = false;
+  std::string data_;
+};
 
 }  // namespace cmt

@@ -7,7 +7,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "experiments/common/verifier_budget.h"
 #include "verifier/planner/verifier_check.h"
 
 namespace cmt {
@@ -30,7 +29,16 @@ planner::ChainVerdict ChainVerdicts::get(const std::vector<Vec3>& commanded) {
   const auto known = known_.find(key);
   if (known != known_.end()) return known->second;
   const auto t0 = std::chrono::steady_clock::now();
-  planner::ChainVerdict v = planner::verifier_chain(task_, commanded, options_, terminate_);
+  planner::ChainVerdict v;
+  const auto running = running_.find(key);
+  if (running != running_.end()) {
+    running->second->poll(true);
+    const std::string text = running->second->result();
+    running_.erase(running);
+    v = verdict_from_text(text);
+  } else {
+    v = planner::verifier_chain(task_, commanded, options_, terminate_);
+  }
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   known_.emplace(key, v);
   return v;
@@ -38,22 +46,22 @@ planner::ChainVerdict ChainVerdicts::get(const std::vector<Vec3>& commanded) {
 
 void ChainVerdicts::prefetch(const std::vector<std::vector<Vec3>>& chains) {
   if (parallel_ <= 1) return;
-  std::vector<std::vector<Vec3>> missing;
-  for (const std::vector<Vec3>& chain : chains)
-    if (!known_.count(key_of(chain)) && std::none_of(missing.begin(), missing.end(), [&](const auto& m) {
-          return key_of(m) == key_of(chain);
-        }))
-      missing.push_back(chain);
-  if (missing.size() < 2) return;  // one chain: verified here when asked for
-  std::vector<std::function<std::string()>> works;
-  for (const std::vector<Vec3>& chain : missing)
-    works.push_back(
-        [this, chain] { return verdict_text(planner::verifier_chain(task_, chain, options_, terminate_)); });
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<std::string> results = run_forked_batch(works, parallel_);
-  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  for (std::size_t i = 0; i < missing.size(); ++i)
-    known_.emplace(key_of(missing[i]), verdict_from_text(results[i]));
+  for (auto it = running_.begin(); it != running_.end();) {
+    if (!it->second->poll(false)) {
+      ++it;
+      continue;
+    }
+    known_.emplace(it->first, verdict_from_text(it->second->result()));
+    it = running_.erase(it);
+  }
+  for (const std::vector<Vec3>& chain : chains) {
+    if (static_cast<int>(running_.size()) >= parallel_) break;
+    const std::vector<double> key = key_of(chain);
+    if (known_.count(key) || running_.count(key)) continue;
+    running_.emplace(key, std::make_unique<ForkedWork>([this, chain] {
+                       return verdict_text(planner::verifier_chain(task_, chain, options_, terminate_));
+                     }));
+  }
 }
 
 std::string verdict_text(const planner::ChainVerdict& v) {

@@ -38,7 +38,9 @@ TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
       {Vec3(0, 0, -1.7)}, {Vec3(0.5, 0, -1.7)}, {Vec3(0, 0, -1.4)}};
   ChainVerdicts forked(*t, options, terminate, 2), here(*t, options, terminate, 1);
   forked.prefetch(chains);
-  here.prefetch(chains);  // one at a time: does nothing
+  EXPECT_EQ(forked.running(), 2u);  // two slots: the third is verified when asked for
+  here.prefetch(chains);            // one at a time: does nothing
+  EXPECT_EQ(here.running(), 0u);
   for (const auto& chain : chains) {
     const planner::ChainVerdict a = forked.get(chain), b = here.get(chain);
     EXPECT_EQ(a.reliable, b.reliable) << chain[0].transpose();
@@ -46,6 +48,22 @@ TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
   }
   EXPECT_TRUE(here.get(chains[0]).reliable);   // the task's own p1
   EXPECT_FALSE(here.get(chains[1]).reliable);  // off centre: may stop past the goal's edge
+  EXPECT_EQ(forked.running(), 0u);
+}
+
+// Chains announced but never asked for: stop() kills their children, and asking afterwards verifies here.
+TEST(ChainVerdicts, StopKillsTheChildrenNotAskedFor) {
+  const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
+  VerifyOptions options;
+  options.spring_model = SpringModel::kVelocity;
+  options.stop_relative_speed = kStopRelativeSpeed;
+  const MotionTermination& terminate = t->task.find_motion("p1")->terminate;
+  ChainVerdicts forked(*t, options, terminate, 2);
+  forked.prefetch({{Vec3(0, 0, -1.7)}, {Vec3(0.5, 0, -1.7)}});
+  EXPECT_EQ(forked.running(), 2u);
+  forked.stop();
+  EXPECT_EQ(forked.running(), 0u);
+  EXPECT_TRUE(forked.get({Vec3(0, 0, -1.7)}).reliable);
 }
 
 }  // namespace

@@ -56,31 +56,40 @@ TEST(VerifierBudget, ChildExceptionsReachTheParentWithTheirMessage) {
   }
 }
 
-// Five works, two children at a time: results in the works' order (the slow first one finishes last), each
-// from its own process; an exception in one child reaches the parent after the others have ended.
-TEST(ForkedBatch, ResultsComeInOrderFromSeparateProcessesAndErrorsReachTheParent) {
-  std::vector<std::function<std::string()>> works;
-  for (int i = 0; i < 5; ++i)
-    works.push_back([i] {
-      if (i == 0) std::this_thread::sleep_for(std::chrono::milliseconds(300));
-      return std::to_string(i) + ":" + std::to_string(::getpid());
-    });
-  const std::vector<std::string> out = run_forked_batch(works, 2);
-  ASSERT_EQ(out.size(), 5u);
-  for (int i = 0; i < 5; ++i) {
-    EXPECT_EQ(out[i].substr(0, 2), std::to_string(i) + ":");
-    EXPECT_NE(out[i].substr(2), std::to_string(::getpid()));  // not this process
-  }
-  // One at a time: in this process.
-  EXPECT_EQ(run_forked_batch({works[1]}, 2)[0], "1:" + std::to_string(::getpid()));
-  EXPECT_EQ(run_forked_batch(works, 1)[3], "3:" + std::to_string(::getpid()));
-  works[2] = []() -> std::string { throw std::runtime_error("child 2 failed"); };
+// A work in its own process: not ended at once (it sleeps), then its result, larger than a pipe buffer.
+TEST(ForkedWork, RunsInAChildAndIsCollectedWhenAskedFor) {
+  ForkedWork work([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    return std::to_string(::getpid()) + ":" + std::string(100000, 'x');
+  });
+  EXPECT_FALSE(work.poll(false));
+  EXPECT_THROW(work.result(), std::logic_error);
+  EXPECT_TRUE(work.poll(true));
+  EXPECT_TRUE(work.poll(false));
+  const std::string out = work.result();
+  ASSERT_NE(out.find(':'), std::string::npos);
+  EXPECT_NE(out.substr(0, out.find(':')), std::to_string(::getpid()));
+  EXPECT_EQ(out.size(), out.find(':') + 1 + 100000);
+}
+
+TEST(ForkedWork, ErrorsReachTheParentAndAnUncollectedChildIsKilled) {
+  ForkedWork failing([]() -> std::string { throw std::runtime_error("check failed"); });
+  ASSERT_TRUE(failing.poll(true));
   try {
-    run_forked_batch(works, 2);
+    failing.result();
     ADD_FAILURE() << "no exception";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), "child 2 failed");
+    EXPECT_EQ(std::string(e.what()), "check failed");
   }
+  const auto start = std::chrono::steady_clock::now();
+  {
+    ForkedWork hanging([] {
+      std::this_thread::sleep_for(std::chrono::seconds(30));
+      return std::string("never");
+    });
+    EXPECT_FALSE(hanging.poll(false));
+  }
+  EXPECT_LT(seconds_since(start), 5.0);  // killed and reaped, not waited for
 }
 
 TEST(UnitRecordText, RoundTripKeepsEveryBit) {

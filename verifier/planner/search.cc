@@ -131,16 +131,25 @@ class Search {
   }
 
   // The contact seeds (contact_seeds()) behind the goal's faces first, then behind the faces nearest the
-  // goal.
+  // goal; at equal distance, faces the pull from the start meets most squarely first
+  // (projection_seed_order(), with PlanRequest::start_point), then by id.
   const std::vector<Vec3>& projection_seeds() {
     if (!projection_seeds_.empty()) return projection_seeds_;
-    std::vector<std::pair<double, Vec3>> by_distance;
-    for (const Face& f : cspace_.faces())
-      for (const Vec3& p : contact_seeds(f, req_.eps_s))
-        by_distance.push_back({is_goal({f.id}) ? -1.0 : goal_distance({f.id}), p});
-    std::stable_sort(by_distance.begin(), by_distance.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& entry : by_distance) projection_seeds_.push_back(entry.second);
+    struct Entry {
+      double distance, squareness;
+      Vec3 seed;
+    };
+    std::vector<Entry> entries;
+    for (const Face& f : cspace_.faces()) {
+      const double distance = is_goal({f.id}) ? -1.0 : goal_distance({f.id});
+      const double squareness = req_.start_point ? projection_seed_order(f, *req_.start_point) : 0.0;
+      for (const Vec3& p : contact_seeds(f, req_.eps_s)) entries.push_back({distance, squareness, p});
+    }
+    std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+      if (a.distance != b.distance) return a.distance < b.distance;
+      return a.squareness > b.squareness;
+    });
+    for (const Entry& entry : entries) projection_seeds_.push_back(entry.seed);
     return projection_seeds_;
   }
 
@@ -220,16 +229,10 @@ class Search {
       return false;
     const auto it = graph_.find(start_states().front());
     if (it == graph_.end()) return false;
-    if (chain_seeds_.empty()) {
-      std::vector<bool> goal_or_near(static_cast<std::size_t>(cspace_.atom_count()));
-      for (int a = 0; a < cspace_.atom_count(); ++a)
-        goal_or_near[static_cast<std::size_t>(a)] = goal_atom(a) || near_goal(a);
-      chain_seeds_ = chain_seeds(cspace_, goal_or_near, req_.eps_s);
-    }
-    const std::vector<Vec3>& seeds = chain_seeds_;
     for (GraphArc& arc : it->second) {
       if (!arc.from_start_projection || arc.rejected || arc.heads.size() != 1 || is_goal(arc.heads[0]))
         continue;
+      const std::vector<Vec3>& seeds = chain_seeds_from(arc.heads[0]);
       while (arc.next_chain_seed < seeds.size()) {
         announce(seeds, arc.next_chain_seed, {arc.commanded});
         const Vec3 q = seeds[arc.next_chain_seed++];
@@ -253,6 +256,20 @@ class Search {
       }
     }
     return false;
+  }
+
+  // The chain seeds (chain_seeds()) for continuations from `head`: with PlanRequest::start_point, those
+  // the pull from the head's atoms meets most squarely first.
+  const std::vector<Vec3>& chain_seeds_from(const State& head) {
+    const State key = req_.start_point ? head : State{};
+    auto it = chain_seeds_.find(key);
+    if (it != chain_seeds_.end()) return it->second;
+    std::vector<bool> goal_or_near(static_cast<std::size_t>(cspace_.atom_count()));
+    for (int a = 0; a < cspace_.atom_count(); ++a)
+      goal_or_near[static_cast<std::size_t>(a)] = goal_atom(a) || near_goal(a);
+    std::optional<Vec3> from;
+    if (req_.start_point) from = atoms_centroid(cspace_, head);
+    return chain_seeds_.emplace(key, chain_seeds(cspace_, goal_or_near, req_.eps_s, from)).first->second;
   }
 
   // PlanRequest::prefetch of the chains `before` + (seed) for the next lookahead seeds from `first`.
@@ -565,11 +582,18 @@ class Search {
   std::map<std::pair<State, int>, bool> memo_;
   std::vector<Vec3> seeds_;
   std::vector<State> start_states_;
-  std::vector<Vec3> projection_seeds_, chain_seeds_;
+  std::vector<Vec3> projection_seeds_;
+  std::map<State, std::vector<Vec3>> chain_seeds_;  // by head (one entry, {}, without a start point)
   std::size_t next_projection_seed_ = 0;
   std::set<std::vector<int>> projected_targets_;
   int confirmed_ = 0, rejected_ = 0, widened_ = 0;
 };
+
+Vec3 vertex_centroid(const Face& face) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : face.polygon) c += v;
+  return c / static_cast<double>(face.polygon.size());
+}
 
 }  // namespace
 
@@ -610,12 +634,17 @@ std::vector<State> confusable_sets(const Confusability& confusable, const std::v
 }
 
 std::vector<Vec3> contact_seeds(const Face& face, double unit) {
-  Vec3 c = Vec3::Zero();
-  for (const Vec3& v : face.polygon) c += v;
-  c /= static_cast<double>(face.polygon.size());
+  const Vec3 c = vertex_centroid(face);
   std::vector<Vec3> out;
   for (double depth : kContactSeedDepths) out.push_back(c - depth * unit * face.normal);
   return out;
+}
+
+double projection_seed_order(const Face& face, const Vec3& start) {
+  const Vec3 pull = vertex_centroid(face) - start;
+  const double length = pull.norm();
+  if (length == 0) return 0;
+  return -face.normal.dot(pull) / length;
 }
 
 std::vector<Vec3> edge_seeds(const CSpace& cspace, const Edge& edge, double unit) {
@@ -629,28 +658,80 @@ std::vector<Vec3> edge_seeds(const CSpace& cspace, const Edge& edge, double unit
   return out;
 }
 
-std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit) {
+double edge_seed_order(const CSpace& cspace, const Edge& edge, const Vec3& start) {
+  if (edge.faces.size() < 2) return 0;
+  const Vec3 n1 = cspace.faces()[static_cast<std::size_t>(edge.faces[0])].normal;
+  const Vec3 n2 = cspace.faces()[static_cast<std::size_t>(edge.faces[1])].normal;
+  if (n1.cross(n2).norm() < kParallelNormals) return 0;
+  const Vec3 inward = -(n1 + n2).normalized();
+  const Vec3 pull = (edge.a + edge.b) / 2 - start;
+  const double length = pull.norm();
+  if (length == 0) return 0;
+  return inward.dot(pull) / length;
+}
+
+std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit,
+                              const std::optional<Vec3>& from) {
   const auto goal = [&](int atom) { return atom < static_cast<int>(goal_atom.size()) && goal_atom[atom]; };
-  std::vector<Vec3> out;
+  std::vector<const Face*> faces;
   std::vector<int> edges;  // atom ids
   const auto add_edge = [&](int e) {
     if (std::find(edges.begin(), edges.end(), e) == edges.end()) edges.push_back(e);
   };
   for (const Face& f : cspace.faces()) {
     if (!goal(f.id)) continue;
-    for (const Vec3& p : contact_seeds(f, unit)) out.push_back(p);
+    faces.push_back(&f);
     for (int e : f.edges) add_edge(e);
   }
   for (const Edge& e : cspace.edges())
     if (goal(e.id)) add_edge(e.id);
   const int first_edge = static_cast<int>(cspace.faces().size());
-  for (std::size_t k = 0; k < std::size(kEdgeSeedDepths); ++k)
-    for (int e : edges) {
-      const std::vector<Vec3> behind =
-          edge_seeds(cspace, cspace.edges()[static_cast<std::size_t>(e - first_edge)], unit);
-      if (!behind.empty()) out.push_back(behind[k]);
-    }
+  const auto edge_of = [&](int e) -> const Edge& {
+    return cspace.edges()[static_cast<std::size_t>(e - first_edge)];
+  };
+  std::vector<Vec3> out;
+  if (!from) {
+    for (const Face* f : faces)
+      for (const Vec3& p : contact_seeds(*f, unit)) out.push_back(p);
+    for (std::size_t k = 0; k < std::size(kEdgeSeedDepths); ++k)
+      for (int e : edges) {
+        const std::vector<Vec3> behind = edge_seeds(cspace, edge_of(e), unit);
+        if (!behind.empty()) out.push_back(behind[k]);
+      }
+    return out;
+  }
+  std::stable_sort(faces.begin(), faces.end(), [&](const Face* a, const Face* b) {
+    return projection_seed_order(*a, *from) > projection_seed_order(*b, *from);
+  });
+  std::stable_sort(edges.begin(), edges.end(), [&](int a, int b) {
+    return edge_seed_order(cspace, edge_of(a), *from) > edge_seed_order(cspace, edge_of(b), *from);
+  });
+  for (const Face* f : faces)
+    for (const Vec3& p : contact_seeds(*f, unit)) out.push_back(p);
+  for (int e : edges)
+    for (const Vec3& p : edge_seeds(cspace, edge_of(e), unit)) out.push_back(p);
   return out;
+}
+
+Vec3 atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms) {
+  Vec3 sum = Vec3::Zero();
+  int n = 0;
+  for (int a : atoms) {
+    if (a < 0 || a >= cspace.atom_count()) continue;  // free space, goal stops
+    ++n;
+    const std::size_t i = static_cast<std::size_t>(cspace.atom_index(a));
+    switch (cspace.atom_kind(a)) {
+      case AtomKind::kFace:
+        sum += vertex_centroid(cspace.faces()[i]);
+        break;
+      case AtomKind::kEdge:
+        sum += (cspace.edges()[i].a + cspace.edges()[i].b) / 2;
+        break;
+      default:
+        sum += cspace.vertices()[i].point;
+    }
+  }
+  return n == 0 ? sum : Vec3(sum / n);
 }
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request) {

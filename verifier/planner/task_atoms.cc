@@ -32,6 +32,12 @@ bool in_region(const Region& region, const Vec3& p, double tol) {
   return false;
 }
 
+Vec3 region_centroid(const Region& region) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : region.points) c += p;
+  return region.points.empty() ? c : Vec3(c / static_cast<double>(region.points.size()));
+}
+
 std::vector<int> start_atoms(const LoadedTask& task) {
   std::vector<int> atoms;
   for (const Vec3& p : region_samples(task.task.start)) {

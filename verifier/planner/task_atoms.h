@@ -13,6 +13,9 @@ namespace cmt::planner {
 // strategy runs from the closed region).
 std::vector<int> start_atoms(const LoadedTask& task);
 
+// The vertex centroid of a region (a point, a segment's middle, a polygon's vertex mean).
+Vec3 region_centroid(const Region& region);
+
 // Whether p lies in the closed region (a point, a segment or a convex planar polygon), within tol.
 bool in_region(const Region& region, const Vec3& p, double tol);
 

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
+
 #include "controllers/termination.h"
 #include "models/loaded_task.h"
 #include "verifier/planner/task_atoms.h"
@@ -315,6 +318,46 @@ TEST(CubePlanStartProjection, AProjectionThatMayFailMakesNoArc) {
   expect_projections_at_root(plan, r);
 }
 
+// A candidate that branches on sensed states is not a chain. Every projection may stop on the bottom or on
+// one of the four walls (two states the robot tells apart by the force's direction), and a wall goes on to
+// the bottom by the simulation's arcs; the check refutes every chain. So the search's candidates once the
+// walls are expanded branch at their first motion. With the chain check set, each branching arc is rejected
+// without a verifier call (strategies with tests are not written), and the search ends at its limit with
+// nothing found instead of returning a branching plan.
+TEST(CubePlanStartProjection, ABranchingCandidateLosesItsBranchingArc) {
+  const auto& t = *cube();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = scripted_request_for(t);
+  r.max_expansions = 8;
+  const int bottom = bottom_face(t);
+  const Confusability confusable(t.cspace, t.task.uncertainty.eps_s, t.task.uncertainty.theta_f);
+  std::vector<std::vector<int>> branching;
+  for (const Face& f : t.cspace.faces())
+    if (std::abs(f.normal.z()) < 0.5) {
+      std::vector<int> targets = {bottom, f.id};
+      std::sort(targets.begin(), targets.end());
+      ASSERT_EQ(confusable_sets(confusable, targets).size(), 2u);
+      branching.push_back(targets);
+    }
+  ASSERT_EQ(branching.size(), 4u);
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return branching[(asked.size() - 1) % branching.size()];
+  };
+  std::vector<std::vector<Vec3>> checked;
+  r.confirm_chain = [&](const std::vector<Vec3>& commanded) {
+    checked.push_back(commanded);
+    return ChainVerdict{false, {std::nullopt}};
+  };
+  const PlanResult plan = plan_sticking(simulation, t.cspace, r);
+  EXPECT_FALSE(plan.found);
+  EXPECT_EQ(plan.expanded, r.max_expansions);
+  EXPECT_FALSE(asked.empty());
+  for (const auto& chain : checked)  // the branching candidates never reached the verifier
+    EXPECT_EQ(std::find(asked.begin(), asked.end(), chain.front()), asked.end()) << chain.front().transpose();
+}
+
 // A projected arc the chain check refutes takes the next seed with the same targets as its command.
 TEST(CubePlanStartProjection, ARefutedProjectionTakesTheNextSeedWithItsTargets) {
   const auto& t = *cube();
@@ -474,6 +517,147 @@ TEST(ChainSeeds, BehindTheGoalFacesThenBehindTheirEdges) {
         EXPECT_NEAR(f.normal.dot(middle - p), kEdgeSeedDepths[k][j] * unit, 1e-12);
       }
     }
+}
+
+}  // namespace
+}  // namespace cmt::planner
+
+namespace cmt::planner {
+namespace {
+
+std::shared_ptr<const LoadedTask> hole() {
+  static const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/hole.yaml");
+  return t;
+}
+
+// The face of `cspace` whose vertex centroid is c.
+const Face& face_at(const CSpace& cspace, const Vec3& c) {
+  for (const Face& f : cspace.faces()) {
+    Vec3 m = Vec3::Zero();
+    for (const Vec3& v : f.polygon) m += v;
+    if ((m / static_cast<double>(f.polygon.size()) - c).norm() < 1e-12) return f;
+  }
+  ADD_FAILURE() << "no face centred at " << c.transpose();
+  return cspace.faces().front();
+}
+
+// The hole's walls seen from the start segment's middle (0, -3, 0): the far wall y = 1 (normal -y) is met
+// head on, the side walls x = -1 and x = 1 obliquely, the near wall y = -1 (normal +y) looks away; the
+// bottom (normal +z) is met at the angle of (0, 3, -2).
+TEST(ProjectionSeedOrder, TheHolesWallsByHowSquarelyThePullFromTheStartMeetsThem) {
+  const CSpace& c = hole()->cspace;
+  const Vec3 start(0, -3, 0);
+  EXPECT_NEAR(projection_seed_order(face_at(c, {0, 1, -1}), start), 4 / std::sqrt(17.0), 1e-12);
+  EXPECT_NEAR(projection_seed_order(face_at(c, {-1, 0, -1}), start), 1 / std::sqrt(11.0), 1e-12);
+  EXPECT_NEAR(projection_seed_order(face_at(c, {1, 0, -1}), start), 1 / std::sqrt(11.0), 1e-12);
+  EXPECT_NEAR(projection_seed_order(face_at(c, {0, -1, -1}), start), -2 / std::sqrt(5.0), 1e-12);
+  EXPECT_NEAR(projection_seed_order(face_at(c, {0, 0, -2}), start), 2 / std::sqrt(13.0), 1e-12);
+  EXPECT_EQ(projection_seed_order(face_at(c, {0, 1, -1}), {0, 1, -1}), 0);  // the start at the centroid
+}
+
+// The seeds the start projections are asked for, in order, when every projection may fail (so the search
+// asks for all of them): the goal's (the bottom's) first, then at equal goal distance (the four walls touch
+// the bottom) the far wall's, the side walls', the near wall's last; without a start point the walls come
+// by face id.
+std::vector<Vec3> asked_projection_seeds(const std::optional<Vec3>& start_point) {
+  const LoadedTask& t = *hole();
+  AtomSimulation simulation(t.cspace, t.task.uncertainty);
+  PlanRequest r = request_for(t);
+  r.max_expansions = 1;
+  r.chain_projections = false;
+  r.start_point = start_point;
+  std::vector<Vec3> asked;
+  r.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
+    asked.push_back(commanded);
+    return std::nullopt;
+  };
+  r.confirm_chain = [](const std::vector<Vec3>&) { return ChainVerdict{false, {std::nullopt}}; };
+  plan_sticking(simulation, t.cspace, r);
+  return asked;
+}
+
+std::vector<Vec3> seeds_behind(const Vec3& centroid) {
+  const LoadedTask& t = *hole();
+  return contact_seeds(face_at(t.cspace, centroid), t.task.uncertainty.eps_s);
+}
+
+TEST(HolePlanStartProjection, SeedsBehindTheFacesThePullMeetsSquarelyComeFirst) {
+  const std::vector<Vec3> asked = asked_projection_seeds(Vec3(0, -3, 0));
+  std::vector<Vec3> expected;
+  for (const Vec3& c : {Vec3(0, 0, -2), Vec3(0, 1, -1), Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(0, -1, -1)})
+    for (const Vec3& p : seeds_behind(c)) expected.push_back(p);
+  ASSERT_GE(asked.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_EQ(asked[i], expected[i]) << "seed " << i << ": " << asked[i].transpose();
+}
+
+TEST(HolePlanStartProjection, WithoutAStartPointTheWallsComeByFaceId) {
+  const std::vector<Vec3> asked = asked_projection_seeds(std::nullopt);
+  std::vector<Vec3> expected;
+  // Face ids: x = -1 (f0), y = -1 (f2), y = 1 (f10), x = 1 (f12).
+  for (const Vec3& c : {Vec3(0, 0, -2), Vec3(-1, 0, -1), Vec3(0, -1, -1), Vec3(0, 1, -1), Vec3(1, 0, -1)})
+    for (const Vec3& p : seeds_behind(c)) expected.push_back(p);
+  ASSERT_GE(asked.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_EQ(asked[i], expected[i]) << "seed " << i << ": " << asked[i].transpose();
+}
+
+// The edge of `cspace` whose midpoint is m.
+const Edge& edge_at(const CSpace& cspace, const Vec3& m) {
+  for (const Edge& e : cspace.edges())
+    if (((e.a + e.b) / 2 - m).norm() < 1e-12) return e;
+  ADD_FAILURE() << "no edge with midpoint " << m.transpose();
+  return cspace.edges().front();
+}
+
+// From the far wall's centroid (0, 1, -1): the bottom's near edge y = -1 (faces +z and +y) is met at the
+// angle of (0, -2, -1) to its inward bisector (0, -1, -1)/sqrt 2, the side edges at (-+1, -1, -1) to
+// (-+1, 0, -1)/sqrt 2, the far edge y = 1 at (0, 0, -1) to (0, 1, -1)/sqrt 2.
+TEST(ChainSeedOrder, TheHolesBottomEdgesFromTheFarWall) {
+  const CSpace& c = hole()->cspace;
+  const Vec3 from(0, 1, -1);
+  EXPECT_NEAR(edge_seed_order(c, edge_at(c, {0, -1, -2}), from), 3 / std::sqrt(10.0), 1e-12);
+  EXPECT_NEAR(edge_seed_order(c, edge_at(c, {-1, 0, -2}), from), 2 / std::sqrt(6.0), 1e-12);
+  EXPECT_NEAR(edge_seed_order(c, edge_at(c, {1, 0, -2}), from), 2 / std::sqrt(6.0), 1e-12);
+  EXPECT_NEAR(edge_seed_order(c, edge_at(c, {0, 1, -2}), from), 1 / std::sqrt(2.0), 1e-12);
+  EXPECT_EQ(edge_seed_order(c, edge_at(c, {0, -1, 0}), {0, -1, 0}), 0);  // from the midpoint itself
+}
+
+// With a point to start from, the goal's contact seeds come first, then each edge's seeds together, the
+// edges the pull meets most squarely first (ties by id: the side edges in id order).
+TEST(ChainSeeds, FromAPointTheEdgesThePullMeetsSquarelyComeFirst) {
+  const LoadedTask& t = *hole();
+  const CSpace& c = t.cspace;
+  const double unit = t.task.uncertainty.eps_s;
+  const std::vector<Vec3> seeds = chain_seeds(c, goal_atoms(t), unit, Vec3(0, 1, -1));
+  std::vector<Vec3> expected = contact_seeds(face_at(c, {0, 0, -2}), unit);
+  const Edge& left = edge_at(c, {-1, 0, -2});
+  const Edge& right = edge_at(c, {1, 0, -2});
+  for (const Edge* e : {&edge_at(c, {0, -1, -2}), left.id < right.id ? &left : &right,
+                        left.id < right.id ? &right : &left, &edge_at(c, {0, 1, -2})})
+    for (const Vec3& p : edge_seeds(c, *e, unit)) expected.push_back(p);
+  EXPECT_EQ(seeds.size(), expected.size());
+  for (std::size_t i = 0; i < std::min(seeds.size(), expected.size()); ++i)
+    EXPECT_EQ(seeds[i], expected[i]) << "seed " << i << ": " << seeds[i].transpose();
+  // Without the point: the same seeds in the shallow-pairs-first order.
+  std::vector<Vec3> plain = chain_seeds(c, goal_atoms(t), unit);
+  EXPECT_NE(plain, seeds);
+  std::sort(plain.begin(), plain.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  std::vector<Vec3> sorted = seeds;
+  std::sort(sorted.begin(), sorted.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  EXPECT_EQ(plain, sorted);
+}
+
+TEST(AtomsCentroid, MeansTheAtomsVertexCentroidsAndSkipsIdsPastTheTable) {
+  const CSpace& c = hole()->cspace;
+  const int wall = face_at(c, {0, 1, -1}).id;
+  const int edge = edge_at(c, {0, 1, -2}).id;
+  EXPECT_LT((atoms_centroid(c, {wall, edge}) - Vec3(0, 1, -1.5)).norm(), 1e-12);
+  EXPECT_LT((atoms_centroid(c, {wall, c.atom_count()}) - Vec3(0, 1, -1)).norm(), 1e-12);
 }
 
 }  // namespace
