@@ -1,12 +1,11 @@
 #include "experiments/report/results_db.h"
 
-#include <sqlite3.h>
-
 #include <cmath>
 #include <limits>
 #include <map>
 #include <set>
 
+#include "experiments/results/sqlite_db.h"
 #include "models/task_error.h"
 
 namespace cmt::report {
@@ -34,73 +33,67 @@ const std::map<std::string, std::vector<std::string>>& required_schema() {
   return schema;
 }
 
-// RAII owners of the sqlite handles.
-class Database {
- public:
-  explicit Database(const std::filesystem::path& path) : path_(path.string()) {
-    if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
-      const std::string reason = db_ ? sqlite3_errmsg(db_) : "out of memory";
-      sqlite3_close(db_);
-      throw TaskError(path_, "", "cannot open the results database: " + reason);
-    }
-  }
-  ~Database() { sqlite3_close(db_); }
-  Database(const Database&) = delete;
-  Database& operator=(const Database&) = delete;
-  sqlite3* get() const { return db_; }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-  sqlite3* db_ = nullptr;
-};
-
-class Statement {
- public:
-  Statement(const Database& db, const std::string& sql, const std::string& what) : db_(db), what_(what) {
-    if (sqlite3_prepare_v2(db.get(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
-      throw TaskError(db.path(), what, std::string("query failed: ") + sqlite3_errmsg(db.get()));
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  bool step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw TaskError(db_.path(), what_, std::string("query failed: ") + sqlite3_errmsg(db_.get()));
-  }
-  bool null(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
-  std::int64_t integer(int col, std::int64_t if_null = 0) const {
-    return null(col) ? if_null : sqlite3_column_int64(stmt_, col);
-  }
-  double real(int col) const { return null(col) ? kNaN : sqlite3_column_double(stmt_, col); }
-  std::string text(int col) const {
-    const unsigned char* t = sqlite3_column_text(stmt_, col);
-    return t ? reinterpret_cast<const char*>(t) : "";
-  }
-
- private:
-  const Database& db_;
-  std::string what_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-// sqlite3_open_v2 accepts any file; the first read tells whether it is an SQLite database at all.
-void check_is_sqlite(const Database& db) {
-  sqlite3_stmt* probe = nullptr;
-  const int rc = sqlite3_prepare_v2(db.get(), "SELECT count(*) FROM sqlite_master", -1, &probe, nullptr);
-  const int step = rc == SQLITE_OK ? sqlite3_step(probe) : rc;
-  const std::string reason = sqlite3_errmsg(db.get());
-  sqlite3_finalize(probe);
-  if (step != SQLITE_ROW) throw TaskError(db.path(), "", "not an SQLite results database (" + reason + ")");
+// Every SQLite error as TaskError(path, key, reason): the report names the table or column it was reading.
+TaskError query_error(const SqliteError& e, const std::string& key) {
+  return TaskError(e.path(), key, "query failed: " + e.detail());
 }
 
-void check_schema(const Database& db) {
+// A query of one table: SqliteStatement's errors keyed by the table, NULL columns as the report reads them.
+class Query {
+ public:
+  Query(SqliteDb& db, const std::string& sql, const std::string& key)
+      : key_(key), stmt_(prepare(db, sql, key)) {}
+
+  bool step() {
+    try {
+      return stmt_.step();
+    } catch (const SqliteError& e) {
+      throw query_error(e, key_);
+    }
+  }
+  bool null(int col) const { return stmt_.is_null(col); }
+  std::int64_t integer(int col, std::int64_t if_null = 0) const {
+    return null(col) ? if_null : stmt_.integer(col);
+  }
+  double real(int col) const { return null(col) ? kNaN : stmt_.real(col); }
+  std::string text(int col) const { return stmt_.text(col); }
+
+ private:
+  static SqliteStatement prepare(SqliteDb& db, const std::string& sql, const std::string& key) {
+    try {
+      return db.prepare(sql);
+    } catch (const SqliteError& e) {
+      throw query_error(e, key);
+    }
+  }
+
+  std::string key_;
+  SqliteStatement stmt_;
+};
+
+SqliteDb open_read_only(const std::filesystem::path& path) {
+  try {
+    return SqliteDb(path, SqliteDb::Mode::kReadOnly);
+  } catch (const SqliteError& e) {
+    throw TaskError(e.path(), "", "cannot open the results database: " + e.detail());
+  }
+}
+
+// sqlite3_open_v2 accepts any file; the first read tells whether it is an SQLite database at all.
+void check_is_sqlite(SqliteDb& db) {
+  try {
+    SqliteStatement probe = db.prepare("SELECT count(*) FROM sqlite_master");
+    if (probe.step()) return;
+    throw TaskError(db.path(), "", "not an SQLite results database (no answer)");
+  } catch (const SqliteError& e) {
+    throw TaskError(db.path(), "", "not an SQLite results database (" + e.detail() + ")");
+  }
+}
+
+void check_schema(SqliteDb& db) {
   for (const auto& [table, columns] : required_schema()) {
     std::set<std::string> present;
-    Statement info(db, "PRAGMA table_info(" + table + ")", table);
+    Query info(db, "PRAGMA table_info(" + table + ")", table);
     while (info.step()) present.insert(info.text(1));
     if (present.empty())
       throw TaskError(db.path(), table, "not a cmt results database: table '" + table + "' is missing");
@@ -111,15 +104,15 @@ void check_schema(const Database& db) {
   }
 }
 
-bool has_column(const Database& db, const std::string& table, const std::string& column) {
-  Statement info(db, "PRAGMA table_info(" + table + ")", table);
+bool has_column(SqliteDb& db, const std::string& table, const std::string& column) {
+  Query info(db, "PRAGMA table_info(" + table + ")", table);
   while (info.step())
     if (info.text(1) == column) return true;
   return false;
 }
 
 // A JSON text column; NULL or empty text is JSON null.
-nlohmann::json json_column(const Database& db, const Statement& s, int col, const std::string& key) {
+nlohmann::json json_column(const SqliteDb& db, const Query& s, int col, const std::string& key) {
   if (s.null(col)) return nullptr;
   const std::string text = s.text(col);
   if (text.empty()) return nullptr;
@@ -142,25 +135,25 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
     throw TaskError(path.string(), "", "no such results database (run `cmt sweep` first)");
   if (std::filesystem::is_directory(path, ec))
     throw TaskError(path.string(), "", "is a directory, not a results database");
-  const Database db(path);
+  SqliteDb db = open_read_only(path);
   check_is_sqlite(db);
   check_schema(db);
 
   ResultsDb out;
   out.path = path;
   {
-    Statement s(db, "SELECT run_id, spec_path, created FROM runs ORDER BY run_id", "runs");
+    Query s(db, "SELECT run_id, spec_path, created FROM runs ORDER BY run_id", "runs");
     while (s.step()) out.runs.push_back({s.integer(0), s.text(1), s.text(2)});
   }
   std::map<std::int64_t, std::size_t> index;  // config_id -> position in out.configs
   {
     // `controller` is a later addition to the schema: databases without it ran the default, impedance.
     const std::string controller = has_column(db, "configs", "controller") ? "controller" : "'impedance'";
-    Statement s(db,
-                "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
-                "mode, status, finished, " +
-                    controller + " FROM configs ORDER BY config_id",
-                "configs");
+    Query s(db,
+            "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
+            "mode, status, finished, " +
+                controller + " FROM configs ORDER BY config_id",
+            "configs");
     while (s.step()) {
       ConfigRow c;
       c.config_id = s.integer(0);
@@ -186,8 +179,8 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
     }
   }
   {
-    Statement s(db, "SELECT config_id, reliable, failure, verify_seconds, verify_json FROM predictions",
-                "predictions");
+    Query s(db, "SELECT config_id, reliable, failure, verify_seconds, verify_json FROM predictions",
+            "predictions");
     while (s.step()) {
       const auto it = index.find(s.integer(0));
       if (it == index.end()) continue;  // a prediction of no listed config: nothing to report it under
@@ -200,11 +193,11 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
     }
   }
   {
-    Statement s(db,
-                "SELECT config_id, rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, "
-                "termination, inside, distance, success, unstable FROM rollouts "
-                "ORDER BY config_id, rollout, motion",
-                "rollouts");
+    Query s(db,
+            "SELECT config_id, rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, "
+            "termination, inside, distance, success, unstable FROM rollouts "
+            "ORDER BY config_id, rollout, motion",
+            "rollouts");
     while (s.step()) {
       const auto it = index.find(s.integer(0));
       if (it == index.end()) continue;
@@ -225,12 +218,12 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
   {
     // `falsify` is a later addition (schema version 3): older databases ran no search.
     const std::string falsify = has_column(db, "metrics", "falsify") ? "falsify" : "NULL";
-    Statement s(db,
-                "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
-                "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
-                "rollout_seconds, verify_seconds, " +
-                    falsify + " FROM metrics",
-                "metrics");
+    Query s(db,
+            "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
+            "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
+            "rollout_seconds, verify_seconds, " +
+                falsify + " FROM metrics",
+            "metrics");
     while (s.step()) {
       const auto it = index.find(s.integer(0));
       if (it == index.end()) continue;

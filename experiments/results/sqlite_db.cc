@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <stdexcept>
+#include <utility>
 
 namespace cmt {
 
@@ -15,29 +16,35 @@ constexpr int kBusyTimeoutMs = 60'000;
 
 }  // namespace
 
-SqliteDb::SqliteDb(const std::filesystem::path& path) : path_(path.string()) {
-  const int rc = sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
+SqliteError::SqliteError(std::string path, std::string context, std::string detail)
+    : std::runtime_error(path + ": " + (context.empty() ? "" : context + ": ") + detail),
+      path_(std::move(path)),
+      context_(std::move(context)),
+      detail_(std::move(detail)) {}
+
+SqliteDb::SqliteDb(const std::filesystem::path& path, Mode mode) : path_(path.string()) {
+  const int flags =
+      mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  const int rc = sqlite3_open_v2(path_.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
     const std::string msg = db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close(db_);
     db_ = nullptr;
-    throw std::runtime_error(path_ + ": cannot open the results database: " + msg);
+    throw SqliteError(path_, "cannot open the results database", msg);
   }
   sqlite3_busy_timeout(db_, kBusyTimeoutMs);
 }
 
 SqliteDb::~SqliteDb() { sqlite3_close_v2(db_); }
 
-void SqliteDb::fail(const std::string& what) const {
-  throw std::runtime_error(path_ + ": " + what + ": " + sqlite3_errmsg(db_));
-}
+void SqliteDb::fail(const std::string& what) const { throw SqliteError(path_, what, sqlite3_errmsg(db_)); }
 
 void SqliteDb::exec(const std::string& sql) {
   char* err = nullptr;
   if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
     const std::string msg = err != nullptr ? err : "unknown error";
     sqlite3_free(err);
-    throw std::runtime_error(path_ + ": " + msg);
+    throw SqliteError(path_, "", msg);
   }
 }
 

@@ -1,11 +1,12 @@
-// A small RAII layer over the SQLite C API for the results store: a connection and prepared statements that
-// finalize themselves, every error turned into std::runtime_error naming the database file and SQLite's
-// message.
+// A small RAII layer over the SQLite C API for the results store (read-write) and the report (read-only): a
+// connection and prepared statements that finalize themselves, every error turned into SqliteError naming the
+// database file and SQLite's message.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 struct sqlite3;
@@ -15,10 +16,25 @@ namespace cmt {
 
 class SqliteStatement;
 
+// what(): "<path>: <context>: <SQLite's message>" (no context: "<path>: <message>"); the parts apart for
+// callers that key their own errors (the report's TaskError by table).
+class SqliteError : public std::runtime_error {
+ public:
+  SqliteError(std::string path, std::string context, std::string detail);
+  const std::string& path() const { return path_; }
+  const std::string& context() const { return context_; }
+  const std::string& detail() const { return detail_; }  // SQLite's message
+
+ private:
+  std::string path_, context_, detail_;
+};
+
 class SqliteDb {
  public:
-  // Opens (creating if needed) the file read-write.
-  explicit SqliteDb(const std::filesystem::path& path);
+  enum class Mode { kReadWrite, kReadOnly };
+  // kReadWrite opens the file, creating it if needed; kReadOnly opens an existing file and never writes (a
+  // report made while a sweep is still writing).
+  explicit SqliteDb(const std::filesystem::path& path, Mode mode = Mode::kReadWrite);
   ~SqliteDb();
   SqliteDb(const SqliteDb&) = delete;
   SqliteDb& operator=(const SqliteDb&) = delete;
