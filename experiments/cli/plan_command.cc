@@ -221,7 +221,7 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   request.max_expansions = cli.max_expansions;
   request.chain_projections = !cli.no_chain_projections;
   const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
-  // The search's verifier checks, memoized, verified ahead `--threads` at a time in forked children.
+  // The search's verifier checks, memoized, verified ahead in up to `--threads` forked children.
   ChainVerdicts verdicts(*task, verify_options, terminate, cli.threads);
   request.confirm_chain = [&](const std::vector<Vec3>& commanded) { return verdicts.get(commanded); };
   request.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {

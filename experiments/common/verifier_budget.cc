@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <stdexcept>
 
@@ -88,8 +89,7 @@ std::string child_result(const std::string& data, int status) {
   if (at < data.size() && data[at] == kResult && WIFEXITED(status) && WEXITSTATUS(status) == 0)
     return data.substr(at + 1);
   if (at < data.size() && data[at] == kError) throw std::runtime_error(data.substr(at + 1));
-  throw std::runtime_error("the unit's worker process ended without a result (" + describe_status(status) +
-                           ")");
+  throw std::runtime_error("the worker process ended without a result (" + describe_status(status) + ")");
 }
 
 }  // namespace
@@ -135,11 +135,15 @@ ForkedWork::ForkedWork(const std::function<std::string()>& work) {
 }
 
 ForkedWork::~ForkedWork() {
-  if (ended_) return;
+  if (!ended_) end(true);
+}
+
+void ForkedWork::end(bool kill) {
   ::close(fd_);
-  ::kill(pid_, SIGKILL);
+  if (kill) ::kill(pid_, SIGKILL);
   while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
   }
+  ended_ = true;
 }
 
 bool ForkedWork::poll(bool block) {
@@ -149,22 +153,25 @@ bool ForkedWork::poll(bool block) {
     const int r = ::poll(&p, 1, block ? -1 : 0);
     if (r < 0 && errno == EINTR) continue;
     if (r == 0) return false;  // nothing to read yet (not blocking)
-    const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+    const ssize_t n = r < 0 ? -1 : ::read(fd_, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n > 0) {
       data_.append(buffer, static_cast<std::size_t>(n));
       continue;
     }
-    ::close(fd_);  // EOF: the child is done (or died)
-    while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
+    if (n < 0) {  // the pipe cannot be read: the result is lost, so the child is stopped
+      error_ = std::string("cannot read the worker's pipe: ") + std::strerror(errno);
+      end(true);
+      break;
     }
-    ended_ = true;
+    end(false);  // EOF: the child is done (or died)
   }
   return true;
 }
 
 std::string ForkedWork::result() const {
   if (!ended_) throw std::logic_error("ForkedWork::result before the child ended");
+  if (!error_.empty()) throw std::runtime_error(error_);
   return child_result(data_, status_);
 }
 

@@ -1,14 +1,14 @@
-// A wall-clock budget for the verifier of a sweep unit (docs/sweeps.md "Verifier time budget"). The
-// verifier cannot be interrupted from outside (no cancellation points in verifier/), and a thread that is
-// given up on keeps a core busy until it finishes and cannot be stopped before the process exits. So the
-// unit runs in a forked child process, which the parent kills (SIGKILL) when the verification has not
-// finished within the budget; the rollouts then run without a prediction and the unit records
-// "verifier: timed out after B s" as its result instead of hanging the sweep.
+// Verifier work in forked child processes: a wall-clock budget for the verifier of a sweep unit
+// (docs/sweeps.md "Verifier time budget"), and works run ahead for the planner (ForkedWork). The verifier
+// cannot be interrupted from outside (no cancellation points in verifier/), and a thread that is given up on
+// keeps a core busy until it finishes and cannot be stopped before the process exits. So the unit runs in a
+// forked child process, which the parent kills (SIGKILL) when the verification has not finished within the
+// budget; the rollouts then run without a prediction and the unit records "verifier: timed out after B s" as
+// its result instead of hanging the sweep.
 #pragma once
 
 #include <functional>
 #include <string>
-#include <vector>
 
 namespace cmt {
 
@@ -40,15 +40,20 @@ class ForkedWork {
   ForkedWork(const ForkedWork&) = delete;
   ForkedWork& operator=(const ForkedWork&) = delete;
 
-  // Reads what the child has written; `block`: until it ends. True once it has ended (and been reaped).
+  // Reads what the child has written; `block`: until it ends. True once it has ended (and been reaped); a
+  // pipe that cannot be read ends it too (the child is killed: its result is lost).
   bool poll(bool block);
-  // The child's result once poll() returned true; its exception, or its death, as std::runtime_error.
+  // The child's result once poll() returned true; its exception, its death or a lost result as
+  // std::runtime_error.
   std::string result() const;
+  int pid() const { return pid_; }
 
  private:
+  void end(bool kill);  // closes the pipe, kills the child if asked, reaps it
+
   int pid_ = -1, fd_ = -1, status_ = 0;
   bool ended_ = false;
-  std::string data_;
+  std::string data_, error_;
 };
 
 }  // namespace cmt

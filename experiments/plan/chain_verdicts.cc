@@ -1,9 +1,8 @@
 // The planner's memoized, forked chain checks (chain_verdicts.h).
 #include "experiments/plan/chain_verdicts.h"
 
-#include <algorithm>
 #include <chrono>
-#include <functional>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -29,19 +28,18 @@ planner::ChainVerdict ChainVerdicts::get(const std::vector<Vec3>& commanded) {
   const auto known = known_.find(key);
   if (known != known_.end()) return known->second;
   const auto t0 = std::chrono::steady_clock::now();
-  planner::ChainVerdict v;
+  std::optional<planner::ChainVerdict> v;
   const auto running = running_.find(key);
   if (running != running_.end()) {
     running->second->poll(true);
-    const std::string text = running->second->result();
+    v = collect(*running->second);
     running_.erase(running);
-    v = verdict_from_text(text);
-  } else {
-    v = planner::verifier_chain(task_, commanded, options_, terminate_);
   }
+  // Not announced, or its child failed: verified here, as with one process (an error is then this one's).
+  if (!v) v = planner::verifier_chain(task_, commanded, options_, terminate_);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  known_.emplace(key, v);
-  return v;
+  known_.emplace(key, *v);
+  return *v;
 }
 
 void ChainVerdicts::prefetch(const std::vector<std::vector<Vec3>>& chains) {
@@ -51,16 +49,30 @@ void ChainVerdicts::prefetch(const std::vector<std::vector<Vec3>>& chains) {
       ++it;
       continue;
     }
-    known_.emplace(it->first, verdict_from_text(it->second->result()));
+    if (std::optional<planner::ChainVerdict> v = collect(*it->second))
+      known_.emplace(it->first, std::move(*v));
     it = running_.erase(it);
   }
   for (const std::vector<Vec3>& chain : chains) {
     if (static_cast<int>(running_.size()) >= parallel_) break;
     const std::vector<double> key = key_of(chain);
     if (known_.count(key) || running_.count(key)) continue;
-    running_.emplace(key, std::make_unique<ForkedWork>([this, chain] {
-                       return verdict_text(planner::verifier_chain(task_, chain, options_, terminate_));
-                     }));
+    try {
+      running_.emplace(key, std::make_unique<ForkedWork>([this, chain] {
+                         return verdict_text(planner::verifier_chain(task_, chain, options_, terminate_));
+                       }));
+    } catch (const std::runtime_error&) {  // no pipe or no fork: the chains are verified here when asked for
+      parallel_ = 1;
+      return;
+    }
+  }
+}
+
+std::optional<planner::ChainVerdict> ChainVerdicts::collect(const ForkedWork& work) {
+  try {
+    return verdict_from_text(work.result());
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
   }
 }
 

@@ -1,13 +1,15 @@
 // The verifier's verdicts on the planner's chains of commanded positions (verifier/planner/verifier_check.h),
 // memoized, and verified ahead in forked children when the search announces the chains it will ask for next
 // (PlanRequest::prefetch): the verifier is single-threaded, so independent checks run in processes. Up to
-// `parallel` children run at once, each started as soon as a slot is free and collected when its chain is
-// asked for, so the search waits only for the chain it needs. The verdicts, and so the plan, do not depend on
-// how many run at once.
+// `parallel` children run at once: an announced chain's child starts when it is announced, if a slot is free,
+// and is collected when the chain is asked for, so the search waits only for the chain it needs. A chain
+// whose child failed (or that was never announced) is verified in this process when asked for. The verdicts,
+// and so the plan, do not depend on how many run at once.
 #pragma once
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,12 +27,14 @@ class ChainVerdicts {
   ChainVerdicts(const LoadedTask& task, const VerifyOptions& options, const MotionTermination& terminate,
                 int parallel);
 
-  // The verdict on the chain: from the memo, from its child (waiting for it), or verified now.
+  // The verdict on the chain: from the memo, from its child (waiting for it), or verified now (in this
+  // process, while the other children run on).
   planner::ChainVerdict get(const std::vector<Vec3>& commanded);
-  // Starts children for the chains not yet known nor running, in order, while fewer than `parallel` run
-  // (after collecting those that have ended).
+  // Collects the children that have ended, then starts children for the chains not yet known nor running, in
+  // order, while fewer than `parallel` run; the rest are not queued (the search announces again each round).
+  // When a pipe or a fork fails, prefetching stops for good.
   void prefetch(const std::vector<std::vector<Vec3>>& chains);
-  // Kills the children whose chains were never asked for (the search is over).
+  // Kills (and reaps) the children whose chains were never asked for: the search is over.
   void stop() { running_.clear(); }
   // Children started and not yet collected.
   std::size_t running() const { return running_.size(); }
@@ -38,6 +42,9 @@ class ChainVerdicts {
   double seconds() const { return seconds_; }
 
  private:
+  // The verdict a child sent, or nothing when it failed (died, threw, or sent no verdict).
+  static std::optional<planner::ChainVerdict> collect(const ForkedWork& work);
+
   const LoadedTask& task_;
   VerifyOptions options_;
   MotionTermination terminate_;

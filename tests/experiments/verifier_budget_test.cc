@@ -5,8 +5,10 @@
 #include "experiments/common/verifier_budget.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <limits>
 #include <thread>
@@ -82,14 +84,19 @@ TEST(ForkedWork, ErrorsReachTheParentAndAnUncollectedChildIsKilled) {
     EXPECT_EQ(std::string(e.what()), "check failed");
   }
   const auto start = std::chrono::steady_clock::now();
+  int pid = -1;
   {
     ForkedWork hanging([] {
       std::this_thread::sleep_for(std::chrono::seconds(30));
       return std::string("never");
     });
+    pid = hanging.pid();
     EXPECT_FALSE(hanging.poll(false));
   }
-  EXPECT_LT(seconds_since(start), 5.0);  // killed and reaped, not waited for
+  EXPECT_LT(seconds_since(start), 5.0);  // killed, not waited for
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), -1);  // and reaped: no such child any more
+  EXPECT_EQ(errno, ECHILD);
 }
 
 TEST(UnitRecordText, RoundTripKeepsEveryBit) {

@@ -2,6 +2,7 @@
 #include "verifier/planner/search.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -18,6 +19,9 @@ constexpr double kParallelNormals = 1e-9;
 // The seed grid's points per axis, and the seeds whose cells are built per target set.
 constexpr int kSeedGrid = 12;
 constexpr int kSeedsPerTargetSet = 8;
+// Goal distances of faces that differ by less than this times the scene's scale count as equal when the
+// projection seeds are ordered (rounding of the distance computation must not decide the order).
+constexpr double kSeedDistanceTie = 1e-9;
 
 class Search {
  public:
@@ -136,12 +140,14 @@ class Search {
   const std::vector<Vec3>& projection_seeds() {
     if (!projection_seeds_.empty()) return projection_seeds_;
     struct Entry {
-      double distance, squareness;
+      long long distance;  // in units of kSeedDistanceTie x scale: equal distances tie however computed
+      double squareness;
       Vec3 seed;
     };
+    const double tie = kSeedDistanceTie * cspace_.scale();
     std::vector<Entry> entries;
     for (const Face& f : cspace_.faces()) {
-      const double distance = is_goal({f.id}) ? -1.0 : goal_distance({f.id});
+      const long long distance = is_goal({f.id}) ? -1 : std::llround(goal_distance({f.id}) / tie);
       const double squareness = req_.start_point ? projection_seed_order(f, *req_.start_point) : 0.0;
       for (const Vec3& p : contact_seeds(f, req_.eps_s)) entries.push_back({distance, squareness, p});
     }
@@ -268,7 +274,7 @@ class Search {
     for (int a = 0; a < cspace_.atom_count(); ++a)
       goal_or_near[static_cast<std::size_t>(a)] = goal_atom(a) || near_goal(a);
     std::optional<Vec3> from;
-    if (req_.start_point) from = atoms_centroid(cspace_, head);
+    if (req_.start_point) from = atoms_centroid(cspace_, head);  // none: id order
     return chain_seeds_.emplace(key, chain_seeds(cspace_, goal_or_near, req_.eps_s, from)).first->second;
   }
 
@@ -713,7 +719,7 @@ std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goa
   return out;
 }
 
-Vec3 atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms) {
+std::optional<Vec3> atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms) {
   Vec3 sum = Vec3::Zero();
   int n = 0;
   for (int a : atoms) {
@@ -731,7 +737,8 @@ Vec3 atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms) {
         sum += cspace.vertices()[i].point;
     }
   }
-  return n == 0 ? sum : Vec3(sum / n);
+  if (n == 0) return std::nullopt;
+  return Vec3(sum / n);
 }
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request) {

@@ -56,9 +56,10 @@ struct PlanRequest {
   std::function<std::optional<std::vector<int>>(const Vec3& commanded)> start_targets;
   // A point of the start region (its vertex centroid). Set, the projection seeds' faces at equal goal
   // distance come in the order the pull from the start meets them, most squarely first
-  // (projection_seed_order()), and each continuation's chain seeds in the order the pull from its head's
-  // atoms (atoms_centroid()) meets their faces and edges (chain_seeds()). Seeds only: the order changes
-  // which plan is found first and how many verifier calls it takes, never what an arc claims.
+  // (projection_seed_order()), and the chain seeds of a start projection's continuations in the order the
+  // pull from the projection's head (where the continuations start: atoms_centroid()) meets their faces and
+  // edges (chain_seeds()). Seeds only: the order changes which plan is found first and how many verifier
+  // calls it takes, never what an arc claims.
   std::optional<Vec3> start_point;
   // With both checks set and one start state, chains of projections: a start projection's arc whose one head
   // is not a goal also gets continuations (GraphArc::continuations), verified by confirm_chain from the
@@ -158,8 +159,9 @@ double edge_seed_order(const CSpace& cspace, const Edge& edge, const Vec3& start
 // meets most squarely first (projection_seed_order(), edge_seed_order()), each edge's pairs together.
 std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit,
                               const std::optional<Vec3>& from = std::nullopt);
-// The mean of the vertex centroids of `atoms` (faces' polygons, edges' ends, vertices).
-Vec3 atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms);
+// The mean of the vertex centroids of `atoms` (faces' polygons, edges' ends, vertices), ids past the table
+// (free space, goal stops) skipped; nothing when none is left.
+std::optional<Vec3> atoms_centroid(const CSpace& cspace, const std::vector<int>& atoms);
 
 PlanResult plan_sticking(AtomSimulation& simulation, const CSpace& cspace, const PlanRequest& request);
 

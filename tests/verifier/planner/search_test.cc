@@ -353,7 +353,9 @@ TEST(CubePlanStartProjection, ABranchingCandidateLosesItsBranchingArc) {
   const PlanResult plan = plan_sticking(simulation, t.cspace, r);
   EXPECT_FALSE(plan.found);
   EXPECT_EQ(plan.expanded, r.max_expansions);
+  EXPECT_NE(plan.reason.find("expansion limit"), std::string::npos) << plan.reason;
   EXPECT_FALSE(asked.empty());
+  EXPECT_FALSE(checked.empty());     // the simulation's chains were checked (and refuted)
   for (const auto& chain : checked)  // the branching candidates never reached the verifier
     EXPECT_EQ(std::find(asked.begin(), asked.end(), chain.front()), asked.end()) << chain.front().transpose();
 }
@@ -582,7 +584,9 @@ std::vector<Vec3> seeds_behind(const Vec3& centroid) {
 }
 
 TEST(HolePlanStartProjection, SeedsBehindTheFacesThePullMeetsSquarelyComeFirst) {
-  const std::vector<Vec3> asked = asked_projection_seeds(Vec3(0, -3, 0));
+  // `cmt plan`'s start point: the start segment's middle.
+  EXPECT_EQ(region_centroid(hole()->task.start), Vec3(0, -3, 0));
+  const std::vector<Vec3> asked = asked_projection_seeds(region_centroid(hole()->task.start));
   std::vector<Vec3> expected;
   for (const Vec3& c : {Vec3(0, 0, -2), Vec3(0, 1, -1), Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(0, -1, -1)})
     for (const Vec3& p : seeds_behind(c)) expected.push_back(p);
@@ -656,8 +660,9 @@ TEST(AtomsCentroid, MeansTheAtomsVertexCentroidsAndSkipsIdsPastTheTable) {
   const CSpace& c = hole()->cspace;
   const int wall = face_at(c, {0, 1, -1}).id;
   const int edge = edge_at(c, {0, 1, -2}).id;
-  EXPECT_LT((atoms_centroid(c, {wall, edge}) - Vec3(0, 1, -1.5)).norm(), 1e-12);
-  EXPECT_LT((atoms_centroid(c, {wall, c.atom_count()}) - Vec3(0, 1, -1)).norm(), 1e-12);
+  EXPECT_LT((*atoms_centroid(c, {wall, edge}) - Vec3(0, 1, -1.5)).norm(), 1e-12);
+  EXPECT_LT((*atoms_centroid(c, {wall, c.atom_count()}) - Vec3(0, 1, -1)).norm(), 1e-12);
+  EXPECT_FALSE(atoms_centroid(c, {c.atom_count(), c.atom_count() + 1}));
 }
 
 }  // namespace
