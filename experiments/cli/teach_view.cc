@@ -10,28 +10,11 @@ namespace {
 
 using nlohmann::json;
 
-json point(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
-
-json points(const std::vector<Vec3>& ps) {
-  json out = json::array();
-  for (const Vec3& p : ps) out.push_back(point(p));
-  return out;
-}
-
 void add_pieces(json& layer, const LoadedTask& task, const std::vector<ReachedPiece>& pieces,
                 const std::string& what) {
-  for (const ReachedPiece& p : pieces) {
-    const json info = {{"atom", p.atom}, {"name", task.cspace.atom_name(p.atom)}, {"what", what}};
-    if (p.polygon.size() == 1) {
-      layer["points"].push_back({{"point", point(p.polygon.front())}, {"info", info}});
-    } else if (p.polygon.size() == 2) {
-      layer["segments"].push_back({{"points", points(p.polygon)}, {"info", info}});
-    } else if (p.polygon.size() > 2) {
-      json holes = json::array();
-      for (const std::vector<Vec3>& h : p.holes) holes.push_back(points(h));
-      layer["polygons"].push_back({{"points", points(p.polygon)}, {"holes", holes}, {"info", info}});
-    }
-  }
+  for (const ReachedPiece& p : pieces)
+    report::add_view_piece(layer, p.polygon, p.holes,
+                           {{"atom", p.atom}, {"name", task.cspace.atom_name(p.atom)}, {"what", what}});
 }
 
 std::vector<ReachedPiece> cell_pieces(const LoadedTask& task, const std::vector<teaching::StartCell>& cells) {

@@ -39,14 +39,8 @@ std::string darker(const std::string& hex, double factor) {
 // nothing, so such points are left out of the layers.
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
-json point(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
-
-json points(const std::vector<Vec3>& ps) {
-  json out = json::array();
-  for (const Vec3& p : ps)
-    if (finite(p)) out.push_back(point(p));
-  return out;
-}
+json point(const Vec3& p) { return view_point(p); }
+json points(const std::vector<Vec3>& ps) { return view_points(ps); }
 
 json cspace_layers(const CSpace& c) {
   json faces = make_layer("cspace-faces", "C-space faces", "scene", kFaceColor, 0.18);
@@ -223,6 +217,28 @@ json focus_of(const ViewInput& in) {
 }
 
 }  // namespace
+
+json view_point(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+json view_points(const std::vector<Vec3>& ps) {
+  json out = json::array();
+  for (const Vec3& p : ps)
+    if (finite(p)) out.push_back(view_point(p));
+  return out;
+}
+
+void add_view_piece(json& layer, const std::vector<Vec3>& polygon,
+                    const std::vector<std::vector<Vec3>>& holes, const json& info) {
+  if (polygon.size() == 1) {
+    layer["points"].push_back({{"point", view_point(polygon.front())}, {"info", info}});
+  } else if (polygon.size() == 2) {
+    layer["segments"].push_back({{"points", view_points(polygon)}, {"info", info}});
+  } else if (polygon.size() > 2) {
+    json hole_points = json::array();
+    for (const std::vector<Vec3>& h : holes) hole_points.push_back(view_points(h));
+    layer["polygons"].push_back({{"points", view_points(polygon)}, {"holes", hole_points}, {"info", info}});
+  }
+}
 
 nlohmann::json make_layer(const std::string& id, const std::string& name, const std::string& group,
                           const std::string& color, double opacity) {

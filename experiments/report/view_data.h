@@ -50,6 +50,15 @@ struct ViewInput {
 nlohmann::json make_layer(const std::string& id, const std::string& name, const std::string& group,
                           const std::string& color, double opacity);
 
+// A point as the page reads it, [x, y, z]; a list of points, the non-finite ones (a piece the verifier could
+// not place) left out.
+nlohmann::json view_point(const Vec3& p);
+nlohmann::json view_points(const std::vector<Vec3>& ps);
+// Adds a piece of a contact set to `layer` by its vertex count: a point (one), a segment (two) or a polygon
+// with holes, each with `info`.
+void add_view_piece(nlohmann::json& layer, const std::vector<Vec3>& polygon,
+                    const std::vector<std::vector<Vec3>>& holes, const nlohmann::json& info);
+
 // {format: "cmt-view-1", title, units, bounds: {min, max} (the whole C-space), focus: {min, max} (start,
 // goal, prediction, ends, trajectories: where the camera looks first), layers: [...]}.
 nlohmann::json view_data(const ViewInput& input);
