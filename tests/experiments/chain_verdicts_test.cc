@@ -26,17 +26,22 @@ TEST(ChainVerdictText, RoundTrips) {
   EXPECT_THROW(verdict_from_text(""), std::runtime_error);
 }
 
-// Three one-motion chains on Buckley's §6.3.2 cube with its P_s: prefetched two at a time in children, then
-// asked for, they equal the verdicts of a ChainVerdicts that verifies each in this process.
-TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
-  const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
+// The verdicts on Buckley's §6.3.2 cube with its P_s (the task's p1's termination), under `cmt verify`'s
+// velocity model and stop rule, `parallel` children at a time.
+ChainVerdicts cube_sensing_verdicts(int parallel) {
+  static const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
   VerifyOptions options;
   options.spring_model = SpringModel::kVelocity;
   options.stop_relative_speed = kStopRelativeSpeed;
-  const MotionTermination& terminate = t->task.find_motion("p1")->terminate;
+  return ChainVerdicts(*t, options, t->task.find_motion("p1")->terminate, parallel);
+}
+
+// Three one-motion chains: prefetched two at a time in children, then
+// asked for, they equal the verdicts of a ChainVerdicts that verifies each in this process.
+TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
   const std::vector<std::vector<Vec3>> chains = {
       {Vec3(0, 0, -1.7)}, {Vec3(0.5, 0, -1.7)}, {Vec3(0, 0, -1.4)}};
-  ChainVerdicts forked(*t, options, terminate, 2), here(*t, options, terminate, 1);
+  ChainVerdicts forked = cube_sensing_verdicts(2), here = cube_sensing_verdicts(1);
   forked.prefetch(chains);
   EXPECT_EQ(forked.running(), 2u);  // two slots: the third is verified when asked for
   here.prefetch(chains);            // one at a time: does nothing
@@ -51,14 +56,10 @@ TEST(ChainVerdicts, PrefetchedInChildrenEqualVerifiedHere) {
   EXPECT_EQ(forked.running(), 0u);
 }
 
-// Chains announced but never asked for: stop() kills their children, and asking afterwards verifies here.
-TEST(ChainVerdicts, StopKillsTheChildrenNotAskedFor) {
-  const auto t = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/cube_sensing.yaml");
-  VerifyOptions options;
-  options.spring_model = SpringModel::kVelocity;
-  options.stop_relative_speed = kStopRelativeSpeed;
-  const MotionTermination& terminate = t->task.find_motion("p1")->terminate;
-  ChainVerdicts forked(*t, options, terminate, 2);
+// Chains announced but never asked for: stop() drops their children (ForkedWork's destructor kills and reaps
+// them, tests/experiments/verifier_budget_test.cc), and asking afterwards verifies here.
+TEST(ChainVerdicts, StopDropsTheChildrenNotAskedFor) {
+  ChainVerdicts forked = cube_sensing_verdicts(2);
   forked.prefetch({{Vec3(0, 0, -1.7)}, {Vec3(0.5, 0, -1.7)}});
   EXPECT_EQ(forked.running(), 2u);
   forked.stop();

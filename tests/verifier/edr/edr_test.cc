@@ -83,17 +83,25 @@ TEST(StepOffsetEdr, DownNeverReachesTheGoal) {
   EXPECT_FALSE(r.edr_reliable);
 }
 
-// Linking (Donald §12.5, (L0)): `left` stops in the goal wherever it exists; a second motion straight up
-// leads the robot out of it (to the ceiling), so the composed strategy is not linked there. Where the goal
-// vanishes G ∩ push is empty and the condition holds.
-TEST(StepOffsetEdr, ASecondMotionLeavingTheGoalBreaksTheLink) {
+// step_offset.yaml with one more motion, `name: {damper: direction}`, after its others.
+Task step_offset_with(const std::string& name, const Vec3& direction) {
   const std::string path = std::string(CMT_SOURCE_DIR) + "/models/tasks/step_offset.yaml";
   std::ifstream in(path);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string down = "down: {damper: [0, 0, -1]}";
-  ASSERT_NE(text.find(down), std::string::npos);
-  text.replace(text.find(down), down.size(), down + "\n  up: {damper: [0, 0, 1]}");
-  const Task t = parse_task_string(text, path);
+  EXPECT_NE(text.find(down), std::string::npos);
+  std::ostringstream motion;
+  motion << std::setprecision(17) << "\n  " << name << ": {damper: [" << direction.x() << ", "
+         << direction.y() << ", " << direction.z() << "]}";
+  text.replace(text.find(down), down.size(), down + motion.str());
+  return parse_task_string(text, path);
+}
+
+// Linking (Donald §12.5, (L0)): `left` stops in the goal wherever it exists; a second motion straight up
+// leads the robot out of it (to the ceiling), so the composed strategy is not linked there. Where the goal
+// vanishes G ∩ push is empty and the condition holds.
+TEST(StepOffsetEdr, ASecondMotionLeavingTheGoalBreaksTheLink) {
+  const Task t = step_offset_with("up", Vec3(0, 0, 1));
   const EdrResult r = verify_edr(t, {"left", "up"}, model_slices(t, 5), EdrOptions{});
   ASSERT_TRUE(r.terminates) << r.reason;
   EXPECT_FALSE(r.linked);
@@ -106,6 +114,29 @@ TEST(StepOffsetEdr, ASecondMotionLeavingTheGoalBreaksTheLink) {
   }
   // The one-motion strategy has no link.
   EXPECT_TRUE(verify_edr(t, {"left"}, model_slices(t, 5), EdrOptions{}).linked);
+}
+
+// The link holds where it is not trivial: a second motion pressing into A's face (left and down, as `left`)
+// keeps a robot that stopped there on the face, so in every slice with a goal, where the first motion's
+// push-forward meets it, the remaining motion ends in the goal; where the goal vanishes G ∩ push is empty.
+TEST(StepOffsetEdr, ASecondMotionPressingIntoTheGoalKeepsTheLink) {
+  const Task t = step_offset_with("press", Vec3(-1, 0, -0.5));
+  const EdrResult first = verify_edr(t, {"left"}, model_slices(t, 5), EdrOptions{});
+  const EdrResult r = verify_edr(t, {"left", "press"}, model_slices(t, 5), EdrOptions{});
+  ASSERT_TRUE(r.terminates) << r.reason;
+  ASSERT_EQ(r.slices.size(), first.slices.size());
+  int met = 0;
+  for (std::size_t i = 0; i < r.slices.size(); ++i) {
+    const EdrSlice& s = r.slices[i];
+    EXPECT_TRUE(s.linked) << s.values[0] << ": " << s.linking_problem;
+    if (!s.goal_empty) {
+      ASSERT_TRUE(first.slices[i].success != nullptr);
+      EXPECT_FALSE(first.slices[i].success->empty()) << s.values[0];  // G ∩ push is not empty
+      ++met;
+    }
+  }
+  EXPECT_GE(met, 2);
+  EXPECT_TRUE(r.linked);
 }
 
 EdrResult run_hole_width(const std::vector<std::string>& motions) {
