@@ -60,6 +60,7 @@ struct FrictionCone::Polyhedral {
   bool full = false;                            // the cone is all of its span
   std::vector<std::array<Vec3, 3>> facets;      // 3-D: hull facets whose planes pass through 0
   std::vector<CGAL::Orientation> facet_inside;  // the orientation sign of the cone's interior for each facet
+  std::vector<Vec3> inward_normals;             // per facet: its unit normal, pointing into the cone
   std::vector<Vec3> extreme;                    // extreme rays (all generators when the span is not 3-D)
 
   Vec3 plane_a, plane_b;    // 2-D: the span
@@ -78,6 +79,7 @@ struct FrictionCone::Polyhedral {
         facet_inside.push_back(CGAL::orientation(o, pt(a), pt(b), pt(circular_axis)));
       }
       extreme = gens;
+      set_inward_normals();
       return;
     }
     const P3 o(0, 0, 0);
@@ -178,6 +180,18 @@ struct FrictionCone::Polyhedral {
         on = on || CGAL::orientation(pt(f[0]), pt(f[1]), pt(f[2]), q) == CGAL::COPLANAR;
       if (on) extreme.push_back(Vec3(q.x(), q.y(), q.z()));
     }
+    set_inward_normals();
+  }
+
+  // CGAL's orientation(p, q, r, s) is the sign of det(q - p, r - p, s - p) = ((q - p) x (r - p)) . (s - p),
+  // so (q - p) x (r - p) points into the cone where the interior's sign is positive.
+  void set_inward_normals() {
+    inward_normals.clear();
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+      const auto& f = facets[i];
+      const Vec3 n = (f[1] - f[0]).cross(f[2] - f[0]).normalized();
+      inward_normals.push_back(facet_inside[i] == CGAL::POSITIVE ? n : Vec3(-n));
+    }
   }
 
   bool contains(const Vec3& d) const {
@@ -235,20 +249,13 @@ struct FrictionCone::Polyhedral {
     if (outside && dim < 3) return lower_dim_angle(d);
     if (dim != 3 || full) return outside ? 0 : -std::numeric_limits<double>::infinity();
     const Vec3 u = d.normalized();
-    double best = outside ? 0 : std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < facets.size(); ++i) {
-      const auto& f = facets[i];
-      Vec3 n = (f[1] - f[0]).cross(f[2] - f[0]).normalized();
-      // CGAL's orientation(p, q, r, s) is the sign of det(q - p, r - p, s - p) = ((q - p) x (r - p)) . (s -
-      // p).
-      if (facet_inside[i] != CGAL::POSITIVE) n = -n;
-      const double s = std::asin(std::clamp(n.dot(u), -1.0, 1.0));
-      if (outside)
-        best = std::max(best, -s);
-      else
-        best = std::min(best, s);
-    }
-    return outside ? best : -best;
+    // The facet angles are asin(n . u); asin is increasing, so the largest violated (outside) and the
+    // smallest satisfied (inside) are both at the smallest n . u.
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Vec3& n : inward_normals) lowest = std::min(lowest, std::clamp(n.dot(u), -1.0, 1.0));
+    if (inward_normals.empty()) return outside ? 0 : -std::numeric_limits<double>::infinity();
+    const double s = std::asin(lowest);
+    return outside ? std::max(0.0, -s) : -s;
   }
 };
 
@@ -373,12 +380,8 @@ bool FrictionCone::contains_cone(const CircularCone& c) const {
   if (p.dim < 3) return c.half_angle == 0 && p.contains(c.axis);
   const Vec3 u = c.axis.normalized();
   const double need = std::sin(c.half_angle) + kCircularRimSlack;
-  for (std::size_t i = 0; i < p.facets.size(); ++i) {
-    const auto& f = p.facets[i];
-    Vec3 n = (f[1] - f[0]).cross(f[2] - f[0]).normalized();
-    if (p.facet_inside[i] != CGAL::POSITIVE) n = -n;
+  for (const Vec3& n : p.inward_normals)
     if (!(n.dot(u) >= need)) return false;
-  }
   return p.contains(u);
 }
 
