@@ -253,7 +253,9 @@ struct FrictionCone::Polyhedral {
     // smallest satisfied (inside) are both at the smallest n . u.
     double lowest = std::numeric_limits<double>::infinity();
     for (const Vec3& n : inward_normals) lowest = std::min(lowest, std::clamp(n.dot(u), -1.0, 1.0));
-    if (inward_normals.empty()) return outside ? 0 : -std::numeric_limits<double>::infinity();
+    // No facet, or none with a number (d not finite): as the largest and smallest of no facet angles.
+    if (lowest == std::numeric_limits<double>::infinity())
+      return outside ? 0 : -std::numeric_limits<double>::infinity();
     const double s = std::asin(lowest);
     return outside ? std::max(0.0, -s) : -s;
   }

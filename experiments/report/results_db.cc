@@ -33,7 +33,7 @@ const std::map<std::string, std::vector<std::string>>& required_schema() {
   return schema;
 }
 
-// Every SQLite error as TaskError(path, key, reason): the report names the table or column it was reading.
+// Every SQLite error as TaskError(path, key, reason): the report names the table it was reading.
 TaskError query_error(const SqliteError& e, const std::string& key) {
   return TaskError(e.path(), key, "query failed: " + e.detail());
 }

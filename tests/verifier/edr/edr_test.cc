@@ -116,8 +116,9 @@ TEST(StepOffsetEdr, ASecondMotionLeavingTheGoalBreaksTheLink) {
   EXPECT_TRUE(verify_edr(t, {"left"}, model_slices(t, 5), EdrOptions{}).linked);
 }
 
-// The link holds where it is not trivial: a second motion pressing into A's face (left and down, as `left`)
-// keeps a robot that stopped there on the face, so in every slice with a goal, where the first motion's
+// The link holds where it is not trivial: a second motion pressing into A's face (left and down, at the
+// friction angle from its normal) keeps a robot that stopped there in the goal (stuck on the face, or slid
+// down it to the bottom edge, which bounds the goal), so in every slice with a goal, where the first motion's
 // push-forward meets it, the remaining motion ends in the goal; where the goal vanishes G ∩ push is empty.
 TEST(StepOffsetEdr, ASecondMotionPressingIntoTheGoalKeepsTheLink) {
   const Task t = step_offset_with("press", Vec3(-1, 0, -0.5));
