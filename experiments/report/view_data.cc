@@ -39,19 +39,16 @@ std::string darker(const std::string& hex, double factor) {
 // nothing, so such points are left out of the layers.
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
-json point(const Vec3& p) { return view_point(p); }
-json points(const std::vector<Vec3>& ps) { return view_points(ps); }
-
 json cspace_layers(const CSpace& c) {
   json faces = make_layer("cspace-faces", "C-space faces", "scene", kFaceColor, 0.18);
   for (const Face& f : c.faces())
     faces["polygons"].push_back(
-        {{"points", points(f.polygon)},
+        {{"points", view_points(f.polygon)},
          {"info",
           {{"atom", f.id}, {"name", c.atom_name(f.id)}, {"kind", "face"}, {"friction", f.friction}}}});
   json edges = make_layer("cspace-edges", "C-space edges", "scene", kEdgeColor, 1);
   for (const Edge& e : c.edges())
-    edges["segments"].push_back({{"points", points({e.a, e.b})},
+    edges["segments"].push_back({{"points", view_points({e.a, e.b})},
                                  {"info", {{"atom", e.id}, {"name", c.atom_name(e.id)}, {"kind", "edge"}}}});
   return json::array({faces, edges});
 }
@@ -59,11 +56,11 @@ json cspace_layers(const CSpace& c) {
 void add_region(json& layer, const Region& r, const std::string& what) {
   const json info = {{"region", what}, {"key", r.key}};
   if (r.kind == Region::Kind::kPoint)
-    layer["points"].push_back({{"point", point(r.points[0])}, {"info", info}});
+    layer["points"].push_back({{"point", view_point(r.points[0])}, {"info", info}});
   else if (r.kind == Region::Kind::kSegment)
-    layer["segments"].push_back({{"points", points(r.points)}, {"info", info}});
+    layer["segments"].push_back({{"points", view_points(r.points)}, {"info", info}});
   else
-    layer["polygons"].push_back({{"points", points(r.points)}, {"info", info}});
+    layer["polygons"].push_back({{"points", view_points(r.points)}, {"info", info}});
 }
 
 json region_layers(const Task& t) {
@@ -124,17 +121,17 @@ json prediction_layer(const ViewInput& in, const PredictedStep& step, int i) {
     }
     if (p.kind == "free") {
       info["radius"] = p.radius;
-      layer["spheres"].push_back({{"center", point(p.center)}, {"radius", p.radius}, {"info", info}});
+      layer["spheres"].push_back({{"center", view_point(p.center)}, {"radius", p.radius}, {"info", info}});
     } else if (p.kind == "vertex" || p.polygon.size() == 1) {
-      layer["points"].push_back({{"point", point(p.polygon.at(0))}, {"style", style}, {"info", info}});
+      layer["points"].push_back({{"point", view_point(p.polygon.at(0))}, {"style", style}, {"info", info}});
     } else if (p.kind == "edge" || p.polygon.size() == 2) {
-      layer["segments"].push_back({{"points", points(p.polygon)}, {"style", style}, {"info", info}});
+      layer["segments"].push_back({{"points", view_points(p.polygon)}, {"style", style}, {"info", info}});
     } else {
       json holes = json::array();
-      for (const std::vector<Vec3>& h : p.holes) holes.push_back(points(h));
+      for (const std::vector<Vec3>& h : p.holes) holes.push_back(view_points(h));
       info["area"] = piece_area(p);
       layer["polygons"].push_back(
-          {{"points", points(p.polygon)}, {"holes", holes}, {"style", style}, {"info", info}});
+          {{"points", view_points(p.polygon)}, {"holes", holes}, {"style", style}, {"info", info}});
     }
   }
   return layer;
@@ -153,7 +150,7 @@ json ends_layers(const std::vector<RolloutRow>& ends, const std::vector<std::str
       if (r.motion != i || !finite(r.end)) continue;
       const json info = {{"rollout", r.rollout},         {"motion", motions[i]},   {"atom", r.atom},
                          {"termination", r.termination}, {"distance", r.distance}, {"success", r.success}};
-      (r.inside ? inside : outside)["points"].push_back({{"point", point(r.end)}, {"info", info}});
+      (r.inside ? inside : outside)["points"].push_back({{"point", view_point(r.end)}, {"info", info}});
     }
     out.push_back(inside);
     out.push_back(outside);
@@ -166,7 +163,7 @@ json trajectory_layer(const std::vector<ViewTrajectory>& trajectories, const std
   json layer = make_layer(id, name, "rollouts", color, 0.9);
   for (const ViewTrajectory& t : trajectories)
     layer["polylines"].push_back(
-        {{"points", points(t.points)}, {"info", {{"rollout", t.rollout}, {"success", t.success}}}});
+        {{"points", view_points(t.points)}, {"info", {{"rollout", t.rollout}, {"success", t.success}}}});
   return layer;
 }
 
@@ -183,7 +180,7 @@ struct Box {
   }
   json to_json() const {
     const bool empty = !finite(lo);
-    return {{"min", point(empty ? Vec3::Zero() : lo)}, {"max", point(empty ? Vec3::Zero() : hi)}};
+    return {{"min", view_point(empty ? Vec3::Zero() : lo)}, {"max", view_point(empty ? Vec3::Zero() : hi)}};
   }
 };
 

@@ -595,6 +595,14 @@ class Search {
   int confirmed_ = 0, rejected_ = 0, widened_ = 0;
 };
 
+// The cosine between the pull from `start` to `target` and the unit vector `inward` (0 for no pull).
+double pull_cosine(const Vec3& start, const Vec3& target, const Vec3& inward) {
+  const Vec3 pull = target - start;
+  const double length = pull.norm();
+  if (length == 0) return 0;
+  return inward.dot(pull) / length;
+}
+
 Vec3 vertex_centroid(const Face& face) {
   Vec3 c = Vec3::Zero();
   for (const Vec3& v : face.polygon) c += v;
@@ -647,10 +655,7 @@ std::vector<Vec3> contact_seeds(const Face& face, double unit) {
 }
 
 double projection_seed_order(const Face& face, const Vec3& start) {
-  const Vec3 pull = vertex_centroid(face) - start;
-  const double length = pull.norm();
-  if (length == 0) return 0;
-  return -face.normal.dot(pull) / length;
+  return pull_cosine(start, vertex_centroid(face), -face.normal);
 }
 
 std::vector<Vec3> edge_seeds(const CSpace& cspace, const Edge& edge, double unit) {
@@ -669,11 +674,7 @@ double edge_seed_order(const CSpace& cspace, const Edge& edge, const Vec3& start
   const Vec3 n1 = cspace.faces()[static_cast<std::size_t>(edge.faces[0])].normal;
   const Vec3 n2 = cspace.faces()[static_cast<std::size_t>(edge.faces[1])].normal;
   if (n1.cross(n2).norm() < kParallelNormals) return 0;
-  const Vec3 inward = -(n1 + n2).normalized();
-  const Vec3 pull = (edge.a + edge.b) / 2 - start;
-  const double length = pull.norm();
-  if (length == 0) return 0;
-  return inward.dot(pull) / length;
+  return pull_cosine(start, (edge.a + edge.b) / 2, -(n1 + n2).normalized());
 }
 
 std::vector<Vec3> chain_seeds(const CSpace& cspace, const std::vector<bool>& goal_atom, double unit,
