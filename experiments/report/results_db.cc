@@ -123,6 +123,39 @@ nlohmann::json json_column(const SqliteDb& db, const Query& s, int col, const st
   }
 }
 
+// The tables read in one read transaction: a sweep writing meanwhile cannot make `configs` and `metrics`
+// come from different moments (each statement alone would take its own snapshot).
+class ReadTransaction {
+ public:
+  explicit ReadTransaction(SqliteDb& db) : db_(db) { run("BEGIN"); }
+  ~ReadTransaction() {
+    if (!open_) return;
+    try {
+      db_.exec("ROLLBACK");
+    } catch (const SqliteError&) {
+      // Closing the connection ends the transaction anyway.
+    }
+  }
+  ReadTransaction(const ReadTransaction&) = delete;
+  ReadTransaction& operator=(const ReadTransaction&) = delete;
+  void commit() {
+    run("COMMIT");
+    open_ = false;
+  }
+
+ private:
+  void run(const char* sql) {
+    try {
+      db_.exec(sql);
+    } catch (const SqliteError& e) {
+      throw TaskError(e.path(), "",
+                      std::string("cannot read the results database (") + sql + "): " + e.detail());
+    }
+  }
+  SqliteDb& db_;
+  bool open_ = true;
+};
+
 std::string config_key(std::int64_t id, const char* table, const char* column) {
   return std::string(table) + "." + column + " (config_id " + std::to_string(id) + ")";
 }
@@ -137,6 +170,7 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
     throw TaskError(path.string(), "", "is a directory, not a results database");
   SqliteDb db = open_read_only(path);
   check_is_sqlite(db);
+  ReadTransaction snapshot(db);
   check_schema(db);
 
   ResultsDb out;
@@ -248,6 +282,7 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
       out.configs[it->second].metrics = std::move(m);
     }
   }
+  snapshot.commit();
   return out;
 }
 
