@@ -1,4 +1,5 @@
-// `cmt falsify TASK --strategy NAME [--budget N] [--coverage-budget N] [--random N] [--seed S] [--threads T]
+// `cmt falsify TASK --strategy NAME [--budget N] [--coverage-budget N] [--gap-budget N] [--random N] [--seed
+// S] [--threads T]
 // [--mode uniform|extreme] [--controller FORM] [--switches K] --json`: adversarial rollouts, a search over
 // the bounded errors for motion ends outside the verifier's prediction and for the predicted pieces random
 // errors never reach (experiments/falsify/falsify.h, docs/falsify.md). Exit 0 when nothing is outside, 1 when
@@ -26,6 +27,10 @@ void print_summary(std::ostream& os, const FalsifyResult& r) {
   int unreached = 0;
   for (const PieceCoverage& pc : r.pieces) unreached += pc.reached_by.empty();
   os << "  " << r.pieces.size() - unreached << " of " << r.pieces.size() << " predicted pieces reached\n";
+  int gaps_reached = 0;
+  for (const CoverageGap& g : r.gaps) gaps_reached += g.reached;
+  if (!r.gaps.empty())
+    os << "  gap search: " << gaps_reached << " of " << r.gaps.size() << " targeted gaps reached\n";
   for (const FalsifyFinding& f : r.findings)
     os << "  SOUNDNESS BUG (" << f.how
        << "): " << (f.motion.empty() ? "failed under a reliable verdict" : f.motion) << " at distance "
@@ -52,6 +57,14 @@ void add_falsify_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--coverage-budget", o->falsify.coverage_budget,
                   "coverage search rollouts, shared among the predicted pieces no rollout reached")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  o->falsify.gap_budget = 400;
+  cmd->add_option("--gap-budget", o->falsify.gap_budget,
+                  "gap search rollouts: searches for the coverage lattice points farthest from every end")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--gap-rollouts", o->falsify.gap_rollouts, "gap search rollouts per gap at most")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--random", o->falsify.random, "random rollouts first (the baseline coverage)")
       ->check(CLI::NonNegativeNumber)

@@ -1,11 +1,12 @@
-// Adversarial rollouts (experiments/falsify/falsify.h): the random baseline, the falsification search and the
-// coverage search.
+// Adversarial rollouts (experiments/falsify/falsify.h): the random baseline, the falsification search, the
+// coverage search and the gap search.
 #include "experiments/falsify/falsify.h"
 
 #include <algorithm>
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -254,6 +255,104 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
   }
 }
 
+// The gap search's view of one motion's coverage: its lattice at the baseline's radius and each lattice
+// point's distance from the nearest end so far (kept as ends arrive: one pass over the lattice per end).
+struct LatticeGaps {
+  CoverageLattice lattice;
+  double radius = 0;
+  std::vector<double> nearest;
+
+  void add_end(const Vec3& end) {
+    for (std::size_t i = 0; i < lattice.points.size(); ++i)
+      nearest[i] = std::min(nearest[i], (lattice.points[i] - end).norm());
+  }
+};
+
+void add_ends(const Context& c, std::span<const RolloutOutcome> rollouts, std::vector<LatticeGaps>* steps) {
+  for (const RolloutOutcome& ro : rollouts)
+    for (const ObservedEnd& e : observe(c, ro).ends)
+      if (e.motion >= 0 && static_cast<std::size_t>(e.motion) < steps->size())
+        (*steps)[static_cast<std::size_t>(e.motion)].add_end(coverage_position(c.task, e.end));
+}
+
+// Around a target its search did not reach, the points its search came no closer to than the target itself
+// are taken as out of reach: within the closest end's distance less the radius (at least the radius). A
+// search-order heuristic only: coverage is scored on every point all the same.
+double skip_radius(const CoverageGap& unreached, double radius) {
+  return std::max(radius, unreached.closest - radius);
+}
+
+// The uncovered lattice point farthest from every end of its motion, skipping points near a target no search
+// reached (skip_radius); nullopt when every point is covered (or skipped).
+std::optional<CoverageGap> farthest_gap(const Context& c, const std::vector<LatticeGaps>& steps,
+                                        const std::vector<CoverageGap>& unreached) {
+  std::optional<CoverageGap> best;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const LatticeGaps& s = steps[k];
+    for (std::size_t i = 0; i < s.lattice.points.size(); ++i) {
+      const Vec3& q = s.lattice.points[i];
+      if (s.nearest[i] <= s.radius || (best && s.nearest[i] <= best->gap)) continue;
+      if (std::any_of(unreached.begin(), unreached.end(), [&](const CoverageGap& g) {
+            return g.step == static_cast<int>(k) && (g.point - q).norm() <= skip_radius(g, s.radius);
+          }))
+        continue;
+      best = CoverageGap{static_cast<int>(k), c.prediction.steps[k].motion, q, s.nearest[i], s.nearest[i]};
+    }
+  }
+  return best;
+}
+
+void gap_search(const Context& c, const std::vector<StepValidation>& radii,
+                std::span<const RolloutOutcome> random, std::vector<RolloutOutcome>* all, FalsifyResult* r) {
+  if (c.options.gap_budget <= 0) return;
+  std::vector<LatticeGaps> steps(c.prediction.steps.size());
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    LatticeGaps& s = steps[k];
+    s.lattice = coverage_lattice(c.task, c.prediction.steps[k]);
+    // Points carry no radius of their own (the piece search covers them); a motion no baseline end measured
+    // has no radius either.
+    if (s.lattice.measure == "points" || k >= radii.size() || !(radii[k].radius > 0))
+      s.lattice.points.clear();
+    s.radius = k < radii.size() ? radii[k].radius : 0;
+    s.nearest.assign(s.lattice.points.size(), std::numeric_limits<double>::infinity());
+  }
+  add_ends(c, random, &steps);
+  add_ends(c, *all, &steps);
+  std::vector<CoverageGap> unreached;
+  int spent = 0;
+  for (std::uint64_t t = 0; spent < c.options.gap_budget; ++t) {
+    std::optional<CoverageGap> gap = farthest_gap(c, steps, unreached);
+    if (!gap) break;
+    const double radius = steps[static_cast<std::size_t>(gap->step)].radius;
+    const std::size_t first = all->size();
+    const BatchScore score = batch_score(c, "gap", all, r, [&](const Observed& o) {
+      double s = kNoScore;
+      for (const ObservedEnd& e : o.ends)
+        if (e.motion == gap->step) s = std::max(s, -(coverage_position(c.task, e.end) - gap->point).norm());
+      return s;
+    });
+    const GenerationDone covered = [&](const std::vector<CrossEntropyCandidate>& gen) {
+      return std::any_of(gen.begin(), gen.end(),
+                         [&](const CrossEntropyCandidate& x) { return -x.score <= radius; });
+    };
+    const int budget = std::min(c.options.gap_rollouts, c.options.gap_budget - spent);
+    const CrossEntropyResult cem = cross_entropy_maximize(
+        c.layout.size(), budget, splitmix64(c.options.seed ^ (0x4761700000000000ULL + t)), c.options.search,
+        score, covered, first_draw(c));
+    r->searches += cem.searches;
+    r->rollouts += cem.evaluations;
+    spent += cem.evaluations;
+    gap->rollouts = cem.evaluations;
+    gap->closest = std::isfinite(cem.best.score) ? -cem.best.score : std::numeric_limits<double>::infinity();
+    gap->reached = gap->closest <= radius;
+    const std::span<const RolloutOutcome> added = std::span<const RolloutOutcome>(*all).subspan(first);
+    add_ends(c, added, &steps);
+    mark_reached(c, added, "gap", &r->pieces);
+    if (!gap->reached) unreached.push_back(*gap);
+    r->gaps.push_back(std::move(*gap));
+  }
+}
+
 // Coverage as `cmt validate` scores it, over `rollouts`; with `radii`, at those radii per step.
 ValidationResult validation_coverage(const LoadedTask& task, const VerifyResult& prediction,
                                      const FalsifyOptions& options,
@@ -334,11 +433,15 @@ FalsifyResult falsify_with(std::shared_ptr<const LoadedTask> task, const Strateg
   // and could lower the coverage of a superset of ends).
   const ValidationResult before = validation_coverage(*task, r.prediction, options, random);
   r.coverage_before = before.coverage;
+  r.coverage_radius = before.coverage_radius;
+  r.coverage_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  gap_search(c, before.steps, random, &searched, &r);
   std::vector<RolloutOutcome> all = random;
   all.insert(all.end(), searched.begin(), searched.end());
   r.coverage_after = validation_coverage(*task, r.prediction, options, all, before.steps).coverage;
-  r.coverage_radius = before.coverage_radius;
-  r.coverage_seconds = seconds_since(start);
+  r.gap_seconds = seconds_since(start);
 
   std::stable_sort(r.findings.begin(), r.findings.end(),
                    [](const FalsifyFinding& a, const FalsifyFinding& b) { return a.distance > b.distance; });

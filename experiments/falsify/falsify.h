@@ -6,7 +6,11 @@
 //     `cmt rollout --errors` command that replays it; under a "reliable" verdict a failed rollout is one too;
 //   - to cover: for each predicted termination piece that no random or falsification rollout ended in,
 //     minimize the distance of that motion's end from the piece; the pieces still unreached after the budget
-//     are listed (verifier looseness or a gap in the search, docs/falsify.md "Coverage").
+//     are listed (verifier looseness or a gap in the search, docs/falsify.md "Coverage");
+//   - to fill coverage gaps: the coverage lattice point (validation.h coverage_lattice) farthest from every
+//     end of its motion is the target of a search that minimizes its motion's end's distance from it, until
+//     an end covers it (within the baseline's coverage radius) or its rollouts run out; then the next
+//     farthest, skipping points near a target no search reached (docs/falsify.md "Gap search").
 // Coverage is scored as `cmt validate` scores it (validation_coverage.cc), before (random rollouts only) and
 // after (every rollout). Every draw comes from the seed; results are the same for any thread count.
 #pragma once
@@ -30,6 +34,8 @@ struct FalsifyOptions {
   int budget = 400;           // falsification search rollouts
   int coverage_budget = 400;  // coverage search rollouts, shared among the unreached pieces
   int random = 100;           // random rollouts first (the baseline coverage), sampled in `mode`
+  int gap_budget = 0;         // gap search rollouts (0: none)
+  int gap_rollouts = 96;      // at most this many per gap
   SampleMode mode = SampleMode::kExtreme;
   std::uint64_t seed = 1;
   int threads = 1;
@@ -40,7 +46,7 @@ struct FalsifyOptions {
 
 // One end found outside (or a failed rollout under a reliable verdict).
 struct FalsifyFinding {
-  std::string how;     // "falsify", "coverage" or "random"
+  std::string how;     // "falsify", "coverage", "gap" or "random"
   std::string motion;  // the motion whose end is outside ("" for a failure at the goal)
   int step = -1;       // its prediction step
   Vec3 end = Vec3::Zero();
@@ -55,10 +61,21 @@ struct PieceCoverage {
   std::string motion;
   ReachedPiece piece;
   double measure = 0;      // area, length or 0 for a point
-  std::string reached_by;  // "random", "falsify", "coverage" or "" (unreached)
+  std::string reached_by;  // "random", "falsify", "coverage", "gap" or "" (unreached)
   bool searched = false;   // the coverage search targeted it
   double closest = 0;      // the nearest end's distance from it (task units)
   int rollouts = 0;        // coverage-search rollouts spent on it
+};
+
+// A coverage gap the gap search targeted: a point of a motion's coverage lattice that no end covered.
+struct CoverageGap {
+  int step = 0;
+  std::string motion;
+  Vec3 point = Vec3::Zero();
+  double gap = 0;        // its distance from the nearest end of its motion when it was chosen
+  double closest = 0;    // the nearest end after its search
+  bool reached = false;  // an end of its search came within the coverage radius
+  int rollouts = 0;
 };
 
 struct FalsifyResult {
@@ -67,8 +84,8 @@ struct FalsifyResult {
   VerifyResult prediction;
   ErrorVectorShape shape;
   int dimension = 0;  // error vector length
-  int searches = 0;   // cross-entropy searches (restarts included), both phases
-  int rollouts = 0;   // search rollouts, both phases (the random ones not included)
+  int searches = 0;   // cross-entropy searches (restarts included), every phase
+  int rollouts = 0;   // search rollouts, every phase (the random ones not included)
   int unstable = 0;   // search rollouts that became unstable (scored as nothing)
   // Per prediction step: the largest signed distance any falsification rollout reached (> 0: outside).
   std::vector<double> best_signed_distance;
@@ -78,7 +95,8 @@ struct FalsifyResult {
   double coverage_before = 0, coverage_after = 0;
   double coverage_radius = 0;  // the random baseline's (both are measured at it)
   std::vector<PieceCoverage> pieces;
-  double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0;
+  std::vector<CoverageGap> gaps;  // in the order searched
+  double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0, gap_seconds = 0;
 };
 
 // The verifier runs on the task's model for the controller form (make_verifier_model, as in run_validation).

@@ -56,6 +56,18 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
     pieces.push_back(piece_json(task, pc));
     if (pc.reached_by.empty()) unreached.push_back(piece_json(task, pc));
   }
+  nlohmann::json gaps = nlohmann::json::array();
+  int gaps_reached = 0;
+  for (const CoverageGap& g : r.gaps) {
+    gaps_reached += g.reached;
+    gaps.push_back({{"step", g.step},
+                    {"motion", g.motion},
+                    {"point", point_json(g.point, dim)},
+                    {"gap", g.gap},
+                    {"closest_end", finite_or_null(g.closest)},
+                    {"reached", g.reached},
+                    {"rollouts", g.rollouts}});
+  }
   return {{"task", r.task},
           {"strategy", r.strategy},
           {"reliable", r.prediction.reliable},
@@ -64,6 +76,8 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
           {"threads", r.options.threads},
           {"budget", r.options.budget},
           {"coverage_budget", r.options.coverage_budget},
+          {"gap_budget", r.options.gap_budget},
+          {"gap_rollouts", r.options.gap_rollouts},
           {"random_rollouts", r.options.random},
           {"random_mode", sample_mode_name(r.options.mode)},
           {"error_vector_length", r.dimension},
@@ -81,10 +95,13 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
           {"coverage_radius", r.coverage_radius},
           {"pieces", pieces},
           {"unreached_pieces", unreached},
+          {"gaps", gaps},
+          {"gaps_reached", gaps_reached},
           {"verify_seconds", r.verify_seconds},
           {"random_seconds", r.random_seconds},
           {"search_seconds", r.search_seconds},
-          {"coverage_seconds", r.coverage_seconds}};
+          {"coverage_seconds", r.coverage_seconds},
+          {"gap_seconds", r.gap_seconds}};
 }
 
 }  // namespace cmt

@@ -167,6 +167,17 @@ void score_soundness(const LoadedTask& task, ValidationResult* result);
 // its sample size, so that coverage of a superset of ends can be compared with it (it cannot decrease).
 void score_coverage(const LoadedTask& task, ValidationResult* result,
                     const std::vector<StepValidation>& radii = {});
+// The lattice a step's coverage is measured on: points of the highest-dimensional part of its prediction,
+// each standing for an equal share of its measure (area-uniform on face regions, length-uniform on segments,
+// the isolated points themselves); planar tasks are measured in the x-z plane.
+struct CoverageLattice {
+  std::string measure = "none";  // "area", "length", "points" or "none" (empty prediction)
+  double predicted = 0;          // the area, length or point count
+  std::vector<Vec3> points;
+};
+CoverageLattice coverage_lattice(const LoadedTask& task, const VerifyStep& step);
+// Where coverage measures an end: the end itself, at y = 0 in planar tasks.
+Vec3 coverage_position(const LoadedTask& task, Vec3 end);
 // Does the result contradict the verifier (exit status 1): an outside end (main or search rollouts), a
 // soundness bug, or a stick/slide disagreement in the sticking table.
 bool contradicts_verifier(const ValidationResult& result);

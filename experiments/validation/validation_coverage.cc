@@ -38,79 +38,94 @@ std::vector<ReachedPiece> in_plane(std::vector<ReachedPiece> pieces) {
   return pieces;
 }
 
+// Splits a step's measured pieces by dimension (planar tasks: their traces in the x-z plane).
+struct PiecesByDimension {
+  std::vector<ReachedPiece> regions, segments, points;
+  double area = 0, length = 0;
+};
+
+PiecesByDimension split_pieces(const LoadedTask& task, const VerifyStep& step) {
+  PiecesByDimension out;
+  std::vector<ReachedPiece> pieces = step.termination.pieces();
+  if (task.task.dimension == 2) pieces = in_plane(std::move(pieces));
+  for (ReachedPiece& p : pieces) {
+    if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) {
+      out.area += p.area;
+      out.regions.push_back(std::move(p));
+    } else if (p.polygon.size() == 2) {
+      out.length += (p.polygon[1] - p.polygon[0]).norm();
+      out.segments.push_back(std::move(p));
+    } else {
+      out.points.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
 // radius > 0: that radius instead of the one from the sample size.
 StepValidation cover_step(const LoadedTask& task, const VerifyStep& step, std::vector<Vec3> ends,
                           double contact_tolerance, double radius) {
   StepValidation s;
   s.motion = step.motion;
   s.ends = static_cast<int>(ends.size());
-  double area = 0, length = 0;
-  std::vector<ReachedPiece> regions, segments, points;
-  std::vector<ReachedPiece> pieces = step.termination.pieces();
-  if (task.task.dimension == 2) {
-    pieces = in_plane(std::move(pieces));
-    for (Vec3& e : ends) e.y() = 0;
-  }
-  for (ReachedPiece& p : pieces) {
-    if (p.kind == AtomKind::kFace && p.polygon.size() >= 3) {
-      area += p.area;
-      regions.push_back(std::move(p));
-    } else if (p.polygon.size() == 2) {
-      length += (p.polygon[1] - p.polygon[0]).norm();
-      segments.push_back(std::move(p));
-    } else {
-      points.push_back(std::move(p));
-    }
-  }
-  // The highest-dimensional part of the prediction carries the measure; lower-dimensional parts (the
-  // boundary closure of face regions, say) have none beside it.
+  for (Vec3& e : ends) e = coverage_position(task, e);
+  const CoverageLattice lattice = coverage_lattice(task, step);
+  s.measure = lattice.measure;
+  s.predicted = lattice.predicted;
+  if (lattice.measure == "none" || ends.empty()) return s;
   const double n = static_cast<double>(ends.size());
-  if (area > 0) {
-    s.measure = "area";
-    s.predicted = area;
-    if (ends.empty()) return s;
-    s.radius = radius > 0 ? radius : std::sqrt(kCoverageConstant * area / (std::numbers::pi * n));
-    const double h = std::sqrt(area / kCoverageSamples);
-    long total = 0, hit = 0;
-    for (const ReachedPiece& p : regions)
-      for (const Vec3& q : region_lattice(task.cspace, p, h)) {
-        ++total;
-        hit += near_an_end(q, ends, s.radius);
-      }
-    // Each lattice point stands for an equal share of the area.
-    s.coverage = total > 0 ? static_cast<double>(hit) / total : 0;
-  } else if (length > 0) {
-    s.measure = "length";
-    s.predicted = length;
-    if (ends.empty()) return s;
-    s.radius = radius > 0 ? radius : kCoverageConstant * length / (2 * n);
-    const double h = length / kCoverageSamples;
-    long total = 0, hit = 0;
-    for (const ReachedPiece& p : segments) {
-      const Vec3 d = p.polygon[1] - p.polygon[0];
-      const double len = d.norm();
-      for (double t = h / 2; t <= len; t += h) {
-        ++total;
-        hit += near_an_end(p.polygon[0] + (t / len) * d, ends, s.radius);
-      }
-    }
-    s.coverage = total > 0 ? static_cast<double>(hit) / total : 0;
-  } else if (!points.empty()) {
-    // Isolated points have no measure to derive a radius from: a point counts as reached when an end lies
-    // within the contact tolerance of it.
-    s.measure = "points";
-    s.predicted = static_cast<double>(points.size());
-    if (ends.empty()) return s;
+  if (lattice.measure ==
+      "points")  // no measure to derive a radius from: reached within the contact tolerance
     s.radius = contact_tolerance;
-    int hit = 0;
-    for (const ReachedPiece& p : points) hit += near_an_end(p.polygon[0], ends, s.radius);
-    s.coverage = hit / s.predicted;
-  }
+  else if (radius > 0)
+    s.radius = radius;
+  else if (lattice.measure == "area")
+    s.radius = std::sqrt(kCoverageConstant * lattice.predicted / (std::numbers::pi * n));
+  else
+    s.radius = kCoverageConstant * lattice.predicted / (2 * n);
+  long hit = 0;
+  for (const Vec3& q : lattice.points) hit += near_an_end(q, ends, s.radius);
+  // Each lattice point stands for an equal share of the measure.
+  const long total = static_cast<long>(lattice.points.size());
+  s.coverage = total > 0 ? static_cast<double>(hit) / total : 0;
   s.covered = s.coverage * s.predicted;
   return s;
 }
 
 }  // namespace
+
+Vec3 coverage_position(const LoadedTask& task, Vec3 end) {
+  if (task.task.dimension == 2) end.y() = 0;
+  return end;
+}
+
+// The highest-dimensional part of the prediction carries the measure; lower-dimensional parts (the boundary
+// closure of face regions, say) have none beside it.
+CoverageLattice coverage_lattice(const LoadedTask& task, const VerifyStep& step) {
+  const PiecesByDimension pieces = split_pieces(task, step);
+  CoverageLattice out;
+  if (pieces.area > 0) {
+    out.measure = "area";
+    out.predicted = pieces.area;
+    const double h = std::sqrt(pieces.area / kCoverageSamples);
+    for (const ReachedPiece& p : pieces.regions)
+      for (const Vec3& q : region_lattice(task.cspace, p, h)) out.points.push_back(q);
+  } else if (pieces.length > 0) {
+    out.measure = "length";
+    out.predicted = pieces.length;
+    const double h = pieces.length / kCoverageSamples;
+    for (const ReachedPiece& p : pieces.segments) {
+      const Vec3 d = p.polygon[1] - p.polygon[0];
+      const double len = d.norm();
+      for (double t = h / 2; t <= len; t += h) out.points.push_back(p.polygon[0] + (t / len) * d);
+    }
+  } else if (!pieces.points.empty()) {
+    out.measure = "points";
+    out.predicted = static_cast<double>(pieces.points.size());
+    for (const ReachedPiece& p : pieces.points) out.points.push_back(p.polygon[0]);
+  }
+  return out;
+}
 
 void score_coverage(const LoadedTask& task, ValidationResult* r, const std::vector<StepValidation>& radii) {
   const std::vector<VerifyStep>& steps = r->prediction.steps;

@@ -139,6 +139,74 @@ TEST(Falsify, FindsEndsOutsideAShrunkPredictionThatRandomSamplingMostlyMisses) {
   EXPECT_EQ(runner.run(strategy, errors, 0).motions.front().end, s.findings.front().end);
 }
 
+// two_blocks `slide`: the verifier (default options) predicts the concave edge e23 for |y| <= 1.69, which
+// the rollouts reach throughout. The baseline here keeps only the random rollouts that ended at y < 0. The
+// gap search must find errors that carry the end to y > 0 and cover at least .11 more of the edge (the y > 0
+// half is .5). Its targets lie on the prediction, and a gap counts as reached exactly when its closest end is
+// within the coverage radius.
+TEST(Falsify, GapSearchFillsTheGapsARandomBaselineLeft) {
+  const auto task = load_task(builtin_path("two_blocks"));
+  const Strategy& strategy = task->task.strategy_named("slide");
+  const VerifyResult prediction = verify_strategy(*task, strategy);
+  FalsifyOptions o;
+  o.threads = 2;
+  o.seed = 3;
+  o.budget = 0;
+  o.coverage_budget = 0;
+  o.gap_budget = 192;
+  o.gap_rollouts = 48;
+  SimOptions sim;
+  sim.form = o.form;
+  sim.mode = o.mode;
+  std::vector<RolloutOutcome> baseline;
+  for (RolloutOutcome& ro : run_rollouts(RolloutScene::build(task, sim), strategy, 100, o.seed, o.threads))
+    if (!ro.unstable && ro.motions.front().end.y() < 0) baseline.push_back(std::move(ro));
+  ASSERT_GE(baseline.size(), 30u);
+  const FalsifyResult g = run_falsify(task, strategy, prediction, o, baseline);
+  EXPECT_LT(g.coverage_before, 0.55);
+  EXPECT_GT(g.coverage_after, g.coverage_before + 0.11)
+      << "before " << g.coverage_before << ", after " << g.coverage_after;
+  ASSERT_FALSE(g.gaps.empty());
+  int spent = 0, reached_beyond_zero = 0;
+  for (const CoverageGap& gap : g.gaps) {
+    spent += gap.rollouts;
+    EXPECT_EQ(gap.step, 0);
+    EXPECT_LE(distance_to_prediction(prediction.steps[0], gap.point), 1e-9);
+    EXPECT_GT(gap.gap, g.coverage_radius);
+    EXPECT_EQ(gap.reached, gap.closest <= g.coverage_radius);
+    reached_beyond_zero += gap.reached && gap.point.y() > 0;
+  }
+  EXPECT_GE(reached_beyond_zero, 1);
+  EXPECT_EQ(spent, g.rollouts);
+  EXPECT_LE(g.rollouts, o.gap_budget);
+}
+
+// The same strategy under the verifier model `cmt falsify` uses (slow slides count as stops,
+// docs/verifier.md) is predicted on the whole edge, y in [-4, 4], while the rollouts end within about 1.7 of
+// y = 0. The gap search's first target is an end of the edge; its search cannot come near it, and the points
+// it came no closer to are skipped; the second target is the other end, and then nothing is left to target:
+// two of the three searches the budget allows, not a third beside the first.
+TEST(Falsify, GapSearchNamesThePartsOfThePredictionItCannotReach) {
+  const auto task = load_task(builtin_path("two_blocks"));
+  FalsifyOptions o;
+  o.threads = 2;
+  o.seed = 3;
+  o.random = 100;
+  o.budget = 0;
+  o.coverage_budget = 0;
+  o.gap_budget = 144;
+  o.gap_rollouts = 48;
+  const FalsifyResult g = run_falsify(task, "slide", o);
+  ASSERT_EQ(g.gaps.size(), 2u);
+  for (const CoverageGap& gap : g.gaps) {
+    EXPECT_FALSE(gap.reached);
+    EXPECT_GT(std::abs(gap.point.y()), 3.9);
+    EXPECT_GT(gap.closest, 1);
+  }
+  EXPECT_LT(g.gaps[0].point.y() * g.gaps[1].point.y(), 0);  // opposite ends
+  EXPECT_EQ(g.rollouts, 96);
+}
+
 TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
   const auto task = load_task(builtin_path("two_blocks"));
   const Strategy& strategy = task->task.strategy_named("slide");
@@ -146,6 +214,8 @@ TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
   FalsifyOptions o;
   o.budget = 20;
   o.coverage_budget = 0;
+  o.gap_budget = 16;
+  o.gap_rollouts = 8;
   o.random = 4;
   o.threads = 1;
   const FalsifyResult one = run_falsify(task, strategy, prediction, o);
@@ -154,6 +224,11 @@ TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.best_errors, two.best_errors);
   EXPECT_EQ(one.best_signed_distance, two.best_signed_distance);
   EXPECT_EQ(one.coverage_after, two.coverage_after);
+  ASSERT_EQ(one.gaps.size(), two.gaps.size());
+  for (std::size_t k = 0; k < one.gaps.size(); ++k) {
+    EXPECT_EQ(one.gaps[k].point, two.gaps[k].point);
+    EXPECT_EQ(one.gaps[k].closest, two.gaps[k].closest);
+  }
 }
 
 }  // namespace

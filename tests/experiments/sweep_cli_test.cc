@@ -260,7 +260,8 @@ TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
   EXPECT_LE(fa["rollouts"].get<int>(), 32);
   EXPECT_EQ(fa["outside"], 0);                                      // slide is sound
   EXPECT_EQ(fa["coverage_before"].get<double>(), std::stod(a[2]));  // the validation's own coverage
-  for (const char* timing : {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds"}) {
+  for (const char* timing :
+       {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds", "gap_seconds"}) {
     fa.erase(timing);
     fb.erase(timing);
   }

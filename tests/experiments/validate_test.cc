@@ -242,6 +242,39 @@ TEST(ValidateScoring, PointCoverageCountsPointsReachedWithinTheTolerance) {
   EXPECT_DOUBLE_EQ(r.coverage, 0.5);
 }
 
+TEST(ValidateScoring, CoverageLatticeIsAreaUniformOnTheHighestDimensionalPart) {
+  // Square [-1,1]^2 (A = 4) and, beside it, a floor vertex: the area carries the measure, so the lattice is
+  // the square's alone, spacing sqrt(4 / 20000) = .014, about 20000 points, each a quarter of them in each
+  // quadrant. The vertex alone is a "points" lattice of one point.
+  const auto t = room();
+  const CSpace& c = t->cspace;
+  int corner = -1;
+  for (const Vertex& v : c.vertices())
+    if (v.point == Vec3(-4, -4, 0)) corner = v.id;
+  ASSERT_GE(corner, 0);
+  ReachedSet s = square(c, 1);
+  s.add_vertex(corner);
+  const CoverageLattice lattice = coverage_lattice(*t, step("m", s));
+  EXPECT_EQ(lattice.measure, "area");
+  EXPECT_NEAR(lattice.predicted, 4, 1e-12);
+  EXPECT_NEAR(static_cast<double>(lattice.points.size()), kCoverageSamples, 0.02 * kCoverageSamples);
+  int first_quadrant = 0;
+  for (const Vec3& q : lattice.points) {
+    EXPECT_LE(std::abs(q.x()), 1);
+    EXPECT_LE(std::abs(q.y()), 1);
+    EXPECT_EQ(q.z(), 0);
+    first_quadrant += q.x() > 0 && q.y() > 0;
+  }
+  EXPECT_NEAR(first_quadrant, lattice.points.size() / 4.0, 0.02 * lattice.points.size());
+  ReachedSet v(c);
+  v.add_vertex(corner);
+  const CoverageLattice points = coverage_lattice(*t, step("m", v));
+  EXPECT_EQ(points.measure, "points");
+  ASSERT_EQ(points.points.size(), 1u);
+  EXPECT_EQ(points.points[0], Vec3(-4, -4, 0));
+  EXPECT_EQ(coverage_lattice(*t, step("m", ReachedSet(c))).measure, "none");
+}
+
 TEST(ValidateScoring, DistanceToAPieceWithAHole) {
   // Outer square [-2,2]^2 on the floor, hole [-1,1]^2.
   const auto t = room();
