@@ -24,6 +24,9 @@ constexpr double kCircularRimSlack = 1e-12;
 // Polyhedral::build_pointed: every generator makes at most an 87-degree angle with the generators' mean
 // direction (cos >= .05), so central projections stay within 20 times a generator's length.
 constexpr double kPointedMinCos = 0.05;
+// A floating-point triple product (p x q) . g errs by less than this times |p| |q| |g| (a few ulps: each of
+// its five roundings is 2^-53 relative to terms bounded by that product); beyond it its sign is certain.
+constexpr double kTripleProductFilter = 1e-14;
 
 P3 pt(const Vec3& v) { return P3(v.x(), v.y(), v.z()); }
 
@@ -154,18 +157,41 @@ struct FrictionCone::Polyhedral {
 
   // A cone whose generators all lie within 90 degrees of their mean direction a, by the margin
   // kPointedMinCos, is the cone over the 2-D convex hull of their central projections onto the plane
-  // a . x = 1: its facets are the hull's edges and its extreme rays the hull's corners. The hull is Andrew's
-  // monotone chain with exact orientation predicates on the projected coordinates, so it is the exact hull of
-  // the rounded projections. Rounding moves a projection by a few ulps relative to its size (at most
-  // 1/kPointedMinCos): a generator the rounded hull leaves out lies that close to the hull's boundary, far
-  // inside the outer rim's inflation (1e-9 relative, FrictionCone::sum), and the facet half-spaces through
-  // the exact generators can only cut the inner cone smaller. Returns false, with nothing set, when the
-  // generators are not so pointed or their projections are collinear: build_3d then takes a 3-D hull.
+  // a . x = 1: its facets are the hull's edges and its extreme rays the hull's corners. The candidate hull is
+  // Andrew's monotone chain on the rounded projections; every_generator_inside then checks with exact
+  // predicates on the generators themselves that each lies on the inner side (or the plane) of every facet,
+  // which makes the facets' cone exactly the cone the generators span (a closed polygon of generators with
+  // every generator on the inner side of each edge is convex and winds once). Returns false, with nothing
+  // set, when the generators are not so pointed, their projections are collinear or the check fails:
+  // build_3d then takes a 3-D hull.
   bool build_pointed() {
     Vec3 a = Vec3::Zero();
     for (const Vec3& g : gens) a += g.normalized();
     if (!(a.norm() > 0)) return false;
     a.normalize();
+    const std::vector<std::size_t> hull = projected_hull(a);
+    if (hull.size() < 3) return false;
+    const P3 o(0, 0, 0);
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      const Vec3& p = gens[hull[k]];
+      const Vec3& q = gens[hull[(k + 1) % hull.size()]];
+      facets.push_back({Vec3::Zero(), p, q});
+      facet_inside.push_back(CGAL::orientation(o, pt(p), pt(q), pt(a)));
+    }
+    if (!every_generator_inside()) {
+      facets.clear();
+      facet_inside.clear();
+      return false;
+    }
+    for (std::size_t i : hull) extreme.push_back(gens[i]);
+    set_inward_normals();
+    return true;
+  }
+
+  // Indices of the generators whose central projections onto a . x = 1 are the corners of their 2-D hull,
+  // counter-clockwise (collinear and repeated points dropped); empty when a generator is not within the
+  // kPointedMinCos margin of a.
+  std::vector<std::size_t> projected_hull(const Vec3& a) const {
     Vec3 u, w;
     frame(a, &u, &w);
     using P2 = K::Point_2;
@@ -173,7 +199,7 @@ struct FrictionCone::Polyhedral {
     projected.reserve(gens.size());
     for (const Vec3& g : gens) {
       const double along = a.dot(g);
-      if (!(along >= kPointedMinCos * g.norm())) return false;
+      if (!(along > 0) || along < kPointedMinCos * g.norm()) return {};
       const Vec3 x = g / along;
       projected.emplace_back(x.dot(u), x.dot(w));
     }
@@ -183,7 +209,7 @@ struct FrictionCone::Polyhedral {
       return projected[i].x() < projected[j].x() ||
              (projected[i].x() == projected[j].x() && projected[i].y() < projected[j].y());
     });
-    // Lower chain left to right, then upper chain right to left; collinear and repeated points are dropped.
+    // Lower chain left to right, then upper chain right to left.
     std::vector<std::size_t> hull;
     for (int pass = 0; pass < 2; ++pass) {
       const std::size_t base = hull.size();
@@ -197,22 +223,28 @@ struct FrictionCone::Polyhedral {
       }
       hull.pop_back();  // each chain's last point starts the other chain
     }
-    if (hull.size() < 3) return false;
+    return hull;
+  }
+
+  // Every generator on the inner side of every facet, or on its plane, decided exactly: a floating-point
+  // triple product settles the clear cases (its rounding error is below kTripleProductFilter times the
+  // product of the three lengths), CGAL's exact orientation the rest. A facet with no inner side (a on its
+  // plane) fails.
+  bool every_generator_inside() const {
     const P3 o(0, 0, 0);
-    for (std::size_t k = 0; k < hull.size(); ++k) {
-      const Vec3& p = gens[hull[k]];
-      const Vec3& q = gens[hull[(k + 1) % hull.size()]];
-      const auto side = CGAL::orientation(o, pt(p), pt(q), pt(a));
-      if (side == CGAL::COPLANAR) {
-        facets.clear();
-        facet_inside.clear();
-        return false;
+    for (std::size_t f = 0; f < facets.size(); ++f) {
+      if (facet_inside[f] == CGAL::COPLANAR) return false;
+      const Vec3& p = facets[f][1];
+      const Vec3& q = facets[f][2];
+      const Vec3 n = p.cross(q);
+      const double sign = facet_inside[f] == CGAL::POSITIVE ? 1.0 : -1.0;
+      const double scale = kTripleProductFilter * p.norm() * q.norm();
+      for (const Vec3& g : gens) {
+        if (sign * n.dot(g) > scale * g.norm()) continue;
+        const auto side = CGAL::orientation(o, pt(p), pt(q), pt(g));
+        if (side != CGAL::COPLANAR && side != facet_inside[f]) return false;
       }
-      facets.push_back({Vec3::Zero(), p, q});
-      facet_inside.push_back(side);
     }
-    for (std::size_t i : hull) extreme.push_back(gens[i]);
-    set_inward_normals();
     return true;
   }
 

@@ -12,8 +12,26 @@ bash scripts/build.sh
 mkdir -p out
 start=$(date +%s)
 build/bin/cmt sweep experiments/sweeps/default.yaml --db out/results.sqlite
-bash scripts/teach_sessions.sh out/teach
-bash scripts/edr_checks.sh out/edr
+# The teaching sessions and the EDR checks are independent and partly single-threaded: side by side they
+# keep both cores busy. Each writes its own folder and runs in its own process group, which is killed if the
+# job stops early (a rerun must not meet a writer left over); the larger exit status of the two is the job's.
+set -m
+bash scripts/teach_sessions.sh out/teach &
+teach_pid=$!
+bash scripts/edr_checks.sh out/edr &
+edr_pid=$!
+set +m
+trap 'kill -- -"$teach_pid" -"$edr_pid" 2>/dev/null || true' EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+teach_status=0 edr_status=0
+wait "$teach_pid" || teach_status=$?
+wait "$edr_pid" || edr_status=$?
+trap - EXIT INT TERM
+if [ "$teach_status" -ne 0 ] || [ "$edr_status" -ne 0 ]; then
+  echo "main job: teaching sessions exit $teach_status, EDR checks exit $edr_status" >&2
+  exit $((teach_status > edr_status ? teach_status : edr_status))
+fi
 bash scripts/plan_checks.sh out/plan
 build/bin/cmt report out/results.sqlite -o out/report --teach out/teach/*.json --edr out/edr/*.json \
   --plan out/plan/*.json

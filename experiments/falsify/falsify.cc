@@ -279,24 +279,30 @@ void add_ends(const Context& c, std::span<const RolloutOutcome> rollouts, std::v
 // are taken as out of reach: within the closest end's distance less the radius (at least the radius). A
 // search-order heuristic only: coverage is scored on every point all the same.
 double skip_radius(const CoverageGap& unreached, double radius) {
+  // A search with no end of its motion (every rollout unstable, say) tells nothing about the points nearby.
+  if (!std::isfinite(unreached.closest)) return radius;
   return std::max(radius, unreached.closest - radius);
 }
 
-// The uncovered lattice point farthest from every end of its motion, skipping points near a target no search
-// reached (skip_radius); nullopt when every point is covered (or skipped).
+// The uncovered lattice point farthest from every end of its motion, in units of its motion's radius,
+// skipping points near a target no search reached (skip_radius); nullopt when every point is covered (or
+// skipped).
 std::optional<CoverageGap> farthest_gap(const Context& c, const std::vector<LatticeGaps>& steps,
                                         const std::vector<CoverageGap>& unreached) {
   std::optional<CoverageGap> best;
+  double best_in_radii = 0;
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const LatticeGaps& s = steps[k];
     for (std::size_t i = 0; i < s.lattice.points.size(); ++i) {
       const Vec3& q = s.lattice.points[i];
-      if (s.nearest[i] <= s.radius || (best && s.nearest[i] <= best->gap)) continue;
+      const double in_radii = s.nearest[i] / s.radius;
+      if (in_radii <= 1 || (best && in_radii <= best_in_radii)) continue;
       if (std::any_of(unreached.begin(), unreached.end(), [&](const CoverageGap& g) {
             return g.step == static_cast<int>(k) && (g.point - q).norm() <= skip_radius(g, s.radius);
           }))
         continue;
       best = CoverageGap{static_cast<int>(k), c.prediction.steps[k].motion, q, s.nearest[i], s.nearest[i]};
+      best_in_radii = in_radii;
     }
   }
   return best;
@@ -305,13 +311,19 @@ std::optional<CoverageGap> farthest_gap(const Context& c, const std::vector<Latt
 void gap_search(const Context& c, const std::vector<StepValidation>& radii,
                 std::span<const RolloutOutcome> random, std::vector<RolloutOutcome>* all, FalsifyResult* r) {
   if (c.options.gap_budget <= 0) return;
+  // Coverage pools the motions with the strategy's highest-dimensional measure (score_coverage): only their
+  // gaps count.
+  std::string pooled = "none";
+  for (const char* m : {"points", "length", "area"})
+    for (const StepValidation& v : radii)
+      if (v.measure == m) pooled = m;
   std::vector<LatticeGaps> steps(c.prediction.steps.size());
   for (std::size_t k = 0; k < steps.size(); ++k) {
     LatticeGaps& s = steps[k];
     s.lattice = coverage_lattice(c.task, c.prediction.steps[k]);
     // Points carry no radius of their own (the piece search covers them); a motion no baseline end measured
     // has no radius either.
-    if (s.lattice.measure == "points" || k >= radii.size() || !(radii[k].radius > 0))
+    if (s.lattice.measure != pooled || pooled == "points" || k >= radii.size() || !(radii[k].radius > 0))
       s.lattice.points.clear();
     s.radius = k < radii.size() ? radii[k].radius : 0;
     s.nearest.assign(s.lattice.points.size(), std::numeric_limits<double>::infinity());

@@ -106,9 +106,10 @@ std::set<std::tuple<double, double, double>> as_set(const std::vector<Vec3>& ray
   return out;
 }
 
-// Sums of two and three circular cones with random axes (edge and vertex cones, pointed and not): the
-// extreme rays of the inner and outer polyhedral cones are the brute-force hull's, and classify() agrees
-// with the brute-force cones on random directions (inside the inner: kInside; outside the outer: kOutside).
+// Sums of two to four circular cones with random axes (edge and vertex cones, pointed and not, with bare
+// axes and repeated axes among them): the extreme rays of the inner and outer polyhedral cones are the
+// brute-force hull's, and classify() agrees with the brute-force cones on random directions (inside the
+// inner: kInside; outside the outer: kOutside).
 TEST(FrictionCone, SumsMatchABruteForceHull) {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> normal;
@@ -127,6 +128,10 @@ TEST(FrictionCone, SumsMatchABruteForceHull) {
         while (axis.dot(centre) < 0.5) axis = random_unit();
       generators.push_back({axis, angle(rng)});
     }
+    // Every fifth trial: a frictionless face (a bare axis, no rim) beside the others; every seventh: a
+    // repeated axis with another half-angle (its rim inside the wider one's).
+    if (trial % 5 == 0) generators.push_back({random_unit(), 0});
+    if (trial % 7 == 0) generators.push_back({generators[0].axis, 0.5 * generators[0].half_angle});
     (trial % 4 < 2 ? pointed : spread) += 1;
     const FrictionCone cone = FrictionCone::sum(generators);
     const BruteForceCone inner(cone.rays(false)), outer(cone.rays(true));
