@@ -29,8 +29,14 @@ nlohmann::json unit_json(const SweepUnit& u) {
           {"n", u.n},
           {"seed", u.seed},
           {"mode", sample_mode_name(u.mode)},
+          {"controller", controller_form_name(u.controller)},
           {"sticking_trials", u.sticking_trials},
-          {"counterexample_budget", u.counterexample_budget}};
+          {"counterexample_budget", u.counterexample_budget},
+          {"verify_budget_seconds", u.verify_budget_seconds},
+          {"falsify",
+           {{"budget", u.falsify_budget},
+            {"coverage_budget", u.falsify_coverage_budget},
+            {"gap_budget", u.falsify_gap_budget}}}};
 }
 
 void print_summary(const nlohmann::json& j, bool json) {

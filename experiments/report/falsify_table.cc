@@ -83,7 +83,7 @@ std::string pieces_reached(const json& f) {
     }
   std::string out = std::to_string(reached) + "/" + std::to_string(pieces.size());
   std::string detail;
-  for (const char* how : {"random", "falsify", "coverage"})
+  for (const char* how : {"random", "falsify", "coverage", "gap"})
     if (by.count(how))
       detail += (detail.empty() ? "" : ", ") + std::string(how) + " " + std::to_string(by[how]);
   return detail.empty() ? out : out + " (" + detail + ")";
@@ -107,6 +107,22 @@ Cell unreached(const json& f) {
   return cell.empty() ? text_cell("-") : cell;
 }
 
+// "1/3; unreached: p2 at (0.381, 1, -1.705), closest end 0.602"; "-" without a gap search.
+Cell gaps(const json& f) {
+  const json& all = array(f, "gaps");
+  if (all.empty()) return text_cell("-");
+  std::string text = std::to_string(integer(f, "gaps_reached")) + "/" + std::to_string(all.size());
+  for (const json& g : all) {
+    if (!member(g, "reached").is_boolean() || member(g, "reached").get<bool>()) continue;
+    std::string at;
+    for (const json& x : array(g, "point"))
+      at += (at.empty() ? "" : ", ") + significant(x.is_number() ? x.get<double>() : SummaryStats::kNoValue);
+    text += "; unreached: " + string(g, "motion") + " at (" + at + "), closest end " +
+            significant(number(g, "closest_end"));
+  }
+  return text_cell(text);
+}
+
 std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
@@ -123,6 +139,7 @@ std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
   row.push_back(text_cell(coverage_change(f)));
   row.push_back(text_cell(pieces_reached(f)));
   row.push_back(unreached(f));
+  row.push_back(gaps(f));
   return row;
 }
 
@@ -144,7 +161,8 @@ Table falsify_table(const std::vector<ConfigSection>& sections) {
                "best signed distance per motion",
                "coverage before → after",
                "pieces reached/total",
-               "unreached pieces"};
+               "unreached pieces",
+               "gaps reached/targeted"};
   for (const ConfigSection& s : sections)
     if (const json* f = falsify_data(*s.row)) t.rows.push_back(falsify_row(s, *f));
   return t;

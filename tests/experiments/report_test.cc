@@ -830,7 +830,23 @@ json falsify_json_of_config1() {
           {"coverage_before", 0.4},
           {"coverage_after", 0.55},
           {"pieces", {reached, unreached}},
-          {"unreached_pieces", {unreached}}};
+          {"unreached_pieces", {unreached}},
+          {"gaps",
+           {{{"step", 0},
+             {"motion", "p1"},
+             {"point", {0.5, 0, -1}},
+             {"gap", 0.4},
+             {"closest_end", 0.1},
+             {"reached", true},
+             {"rollouts", 16}},
+            {{"step", 0},
+             {"motion", "p1"},
+             {"point", {-0.9, 0.9, -1}},
+             {"gap", 1.0},
+             {"closest_end", 0.8},
+             {"reached", false},
+             {"rollouts", 32}}}},
+          {"gaps_reached", 1}};
 }
 
 TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
@@ -849,7 +865,8 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
   EXPECT_NE(html.find("<tr><td><a href=\"#config-1\">1</a></td><td>cube / stick</td><td>reliable</td>"
                       "<td>48 (2 unstable)</td><td>5</td><td>1</td><td>p1 0.0125 (outside)</td>"
                       "<td>0.4000 → 0.5500</td><td>1/2 (random 1)</td>"
-                      "<td>step 0 p1: e3 (edge, measure 0.5, closest end 0.02, searched)</td></tr>"),
+                      "<td>step 0 p1: e3 (edge, measure 0.5, closest end 0.02, searched)</td>"
+                      "<td>1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8</td></tr>"),
             std::string::npos)
       << html;
   // Markdown: the same table under its own heading.
@@ -857,7 +874,7 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
   ASSERT_FALSE(md.empty()) << r.markdown;
   EXPECT_NE(md.find("| [1](#config-1) | cube / stick | reliable | 48 (2 unstable) | 5 | 1 | p1 0.0125 "
                     "(outside) | 0.4000 → 0.5500 | 1/2 (random 1) | step 0 p1: e3 (edge, measure 0.5, "
-                    "closest end 0.02, searched) |"),
+                    "closest end 0.02, searched) | 1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8 |"),
             std::string::npos)
       << md;
   // The note with the farthest end's replay command, in both documents; the summary line.

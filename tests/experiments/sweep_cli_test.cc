@@ -231,7 +231,7 @@ TEST_F(SweepCli, VerifierBudgetTimesOutIntoAResultRow) {
 // out gives no search; the report lists it.
 TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
   const std::string unit =
-      "n: 10\nseeds: [1]\nfalsify: {budget: 16, coverage_budget: 16}\ntasks:\n  - file: " +
+      "n: 10\nseeds: [1]\nfalsify: {budget: 16, coverage_budget: 16, gap_budget: 8}\ntasks:\n  - file: " +
       test::source_task("two_blocks") + "\n    strategies: [slide]\n";
   const std::string forked =
       test::write_file(dir_ / "forked.yaml", "verify_budget_seconds: 600\n" + unit).string();
@@ -257,7 +257,12 @@ TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
   EXPECT_EQ(fa["random_rollouts"], 10);  // the validation's rollouts are the baseline
   EXPECT_FALSE(fa.contains("threads"));
   EXPECT_GE(fa["rollouts"].get<int>(), 16);
-  EXPECT_LE(fa["rollouts"].get<int>(), 32);
+  EXPECT_LE(fa["rollouts"].get<int>(), 40);
+  EXPECT_EQ(fa["gap_budget"], 8);
+  int gap_rollouts = 0;
+  for (const auto& g : fa["gaps"]) gap_rollouts += g["rollouts"].get<int>();
+  EXPECT_GT(gap_rollouts, 0);  // the gap search ran in the unit
+  EXPECT_LE(gap_rollouts, 8);
   EXPECT_EQ(fa["outside"], 0);                                      // slide is sound
   EXPECT_EQ(fa["coverage_before"].get<double>(), std::stod(a[2]));  // the validation's own coverage
   for (const char* timing :
@@ -332,7 +337,22 @@ TEST_F(SweepCli, BadSpecsExitWithStatusTwo) {
   j = run_json("sweep " + good + " --list --shard 1/2", 0);
   ASSERT_EQ(j["units"].size(), 1u);
   EXPECT_EQ(j["units"][0]["strategy"], "slide");
+  EXPECT_EQ(j["units"][0]["counterexample_budget"], 10);
+  EXPECT_EQ(j["units"][0]["controller"], "impedance");
+  EXPECT_EQ(j["units"][0]["falsify"],
+            (nlohmann::json{{"budget", 0}, {"coverage_budget", 0}, {"gap_budget", 0}}));
   EXPECT_EQ(j["total"], 2);
+  // Budgets as the spec sets them.
+  const std::string searched =
+      test::write_file(dir_ / "searched.yaml", two_unit_spec() +
+                                                   "falsify: {budget: 8, coverage_budget: 4, "
+                                                   "gap_budget: 2}\nverify_budget_seconds: 30\n")
+          .string();
+  j = run_json("sweep " + searched + " --list", 0);
+  ASSERT_EQ(j["units"].size(), 2u);
+  EXPECT_EQ(j["units"][1]["falsify"],
+            (nlohmann::json{{"budget", 8}, {"coverage_budget", 4}, {"gap_budget", 2}}));
+  EXPECT_EQ(j["units"][1]["verify_budget_seconds"], 30.0);
 }
 
 }  // namespace

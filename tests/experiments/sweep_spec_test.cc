@@ -302,6 +302,29 @@ TEST(SweepSpec, FalsifyBudgetsAreUnitFieldsWithPerEntryOverrides) {
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1), base);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0),
             make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1));
+  // The gap budget alone changes the key; a search without one keeps the key it had before it existed.
+  const std::string searched =
+      make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0);
+  EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0), searched);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 5), searched);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 5), base);
+}
+
+TEST(SweepSpec, FalsifyGapBudgetIsOptional) {
+  const std::string spec =
+      "n: 10\nseeds: [1]\nfalsify: {budget: 20, coverage_budget: 10, gap_budget: 30}\ntasks:\n"
+      "  - file: " +
+      kTwoBlocks + "\n    strategies: [down]\n  - file: " + kTwoBlocks +
+      "\n    strategies: [slide]\n    falsify: {budget: 20, coverage_budget: 10}\n";
+  const SweepSpec parsed = parse(spec);
+  EXPECT_EQ(parsed.falsify.gap_budget, 30);
+  const auto units = expand_units(parsed);
+  ASSERT_EQ(units.size(), 2u);
+  EXPECT_EQ(units[0].falsify_gap_budget, 30);
+  EXPECT_EQ(units[1].falsify_gap_budget, 0);  // an entry's own falsify without it: no gap search
+  const std::string top = "n: 10\nseeds: [1]\n";
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 1, coverage_budget: 0, gap_budget: -2}\n"),
+               "falsify.gap_budget", "must be in [0, 10000000]");
 }
 
 TEST(SweepSpec, FalsifyErrorsNameFileKeyAndReason) {

@@ -132,12 +132,14 @@ class SpecParser {
     return entry;
   }
 
-  // `falsify: {budget: N, coverage_budget: M}`, both required.
+  // `falsify: {budget: N, coverage_budget: M[, gap_budget: G]}`: the first two required, G 0 when missing.
   static SweepFalsify parse_falsify(const SpecNode& n) {
-    n.require_map({"budget", "coverage_budget"});
+    n.require_map({"budget", "coverage_budget", "gap_budget"});
     SweepFalsify f;
     f.budget = static_cast<int>(n.at("budget").integer(0, kMaxSweepFalsifyBudget));
     f.coverage_budget = static_cast<int>(n.at("coverage_budget").integer(0, kMaxSweepFalsifyBudget));
+    if (n.has("gap_budget"))
+      f.gap_budget = static_cast<int>(n.at("gap_budget").integer(0, kMaxSweepFalsifyBudget));
     return f;
   }
 

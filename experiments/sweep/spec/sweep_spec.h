@@ -23,17 +23,18 @@ inline constexpr long long kMaxSweepRollouts = 10'000'000;        // n per unit
 inline constexpr long long kMaxSweepRandomDraws = 1'000'000;      // random.count per task
 inline constexpr long long kMaxSweepStickingTrials = 10'000'000;  // sticking_trials per unit
 inline constexpr long long kMaxSweepCounterexampleBudget = 10'000'000;
-inline constexpr long long kMaxSweepFalsifyBudget = 10'000'000;  // falsify.budget and .coverage_budget
+inline constexpr long long kMaxSweepFalsifyBudget = 10'000'000;          // each of falsify's budgets
 inline constexpr double kMaxSweepVerifyBudgetSeconds = 7 * 24 * 3600.0;  // a week: beyond it, no limit at all
 // Seeds are stored in SQLite INTEGER columns (signed 64-bit), so they must stay below 2^63.
 inline constexpr long long kMaxSweepSeed = 0x7fffffffffffffffLL;
 
 // The adversarial-rollout search after a unit's validation (docs/falsify.md "In sweeps and the report"):
-// search rollouts of the falsification and of the coverage phase. Both 0: no search.
+// search rollouts of the falsification, the coverage and the gap phase. All 0: no search.
 struct SweepFalsify {
   int budget = 0;
   int coverage_budget = 0;
-  bool enabled() const { return budget + coverage_budget > 0; }
+  int gap_budget = 0;  // optional in the spec
+  bool enabled() const { return budget + coverage_budget + gap_budget > 0; }
 };
 
 struct SweepTaskEntry {
@@ -62,7 +63,7 @@ struct SweepSpec {
   // Wall-clock seconds a unit's verifier may take, 0 = no limit (experiments/common/verifier_budget.h):
   // beyond it the unit records "verifier: timed out after B s" and its rollouts run without a prediction.
   double verify_budget_seconds = 0;
-  SweepFalsify falsify;  // `falsify: {budget, coverage_budget}`; missing: no search
+  SweepFalsify falsify;  // `falsify: {budget, coverage_budget[, gap_budget]}`; missing: no search
   std::vector<SweepTaskEntry> tasks;
 };
 

@@ -31,6 +31,7 @@ struct SweepUnit {
   // 0: none.
   int falsify_budget = 0;
   int falsify_coverage_budget = 0;
+  int falsify_gap_budget = 0;
   std::string spec_key;  // tasks[i], for messages
 };
 
@@ -42,7 +43,7 @@ struct SweepUnit {
 std::string make_unit_key(const std::string& task_yaml, const std::string& strategy, int n,
                           std::uint64_t seed, SampleMode mode, ControllerForm controller, int sticking_trials,
                           int counterexample_budget, double verify_budget_seconds = 0, int falsify_budget = 0,
-                          int falsify_coverage_budget = 0);
+                          int falsify_coverage_budget = 0, int falsify_gap_budget = 0);
 
 // Every unit of the spec: tasks in spec order, then parameter sets (grid, then random draws), strategies and
 // seeds (innermost). A unit whose key repeats an earlier one (the same values listed twice) is dropped and
