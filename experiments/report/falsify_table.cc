@@ -1,9 +1,11 @@
 // The report's "Adversarial rollouts" section (report_table.h falsify_table; docs/falsify.md "In sweeps and
 // the report"): per configuration whose sweep unit ran the adversarial search, the numbers of its
 // metrics.falsify object (`cmt falsify --json`'s, without `threads`), and the summary counts and notes.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <vector>
 
 #include "experiments/report/report_table.h"
 
@@ -107,19 +109,32 @@ Cell unreached(const json& f) {
   return cell.empty() ? text_cell("-") : cell;
 }
 
-// "1/3; unreached: p2 at (0.381, 1, -1.705), closest end 0.602"; "-" without a gap search.
+// Unreached gaps listed in the report's cell, the nearest approaches first.
+constexpr std::size_t kReportedGaps = 3;
+
+// "1/3; unreached: p2 at (0.381, 1, -1.705), closest end 0.602; ..."; "0/0 (no gap)" when the search found
+// every lattice point covered; "-" without a gap search.
 Cell gaps(const json& f) {
   const json& all = array(f, "gaps");
-  if (all.empty()) return text_cell("-");
+  if (all.empty()) return text_cell(integer(f, "gap_budget") > 0 ? "0/0 (no gap)" : "-");
   std::string text = std::to_string(integer(f, "gaps_reached")) + "/" + std::to_string(all.size());
-  for (const json& g : all) {
-    if (!member(g, "reached").is_boolean() || member(g, "reached").get<bool>()) continue;
+  std::vector<const json*> unreached;
+  for (const json& g : all)
+    if (member(g, "reached").is_boolean() && !member(g, "reached").get<bool>()) unreached.push_back(&g);
+  std::stable_sort(unreached.begin(), unreached.end(), [](const json* a, const json* b) {
+    const double da = number(*a, "closest_end"), db = number(*b, "closest_end");
+    return std::isfinite(da) && (!std::isfinite(db) || da < db);
+  });
+  for (std::size_t i = 0; i < unreached.size() && i < kReportedGaps; ++i) {
+    const json& g = *unreached[i];
     std::string at;
     for (const json& x : array(g, "point"))
       at += (at.empty() ? "" : ", ") + significant(x.is_number() ? x.get<double>() : SummaryStats::kNoValue);
     text += "; unreached: " + string(g, "motion") + " at (" + at + "), closest end " +
             significant(number(g, "closest_end"));
   }
+  if (unreached.size() > kReportedGaps)
+    text += "; and " + std::to_string(unreached.size() - kReportedGaps) + " more unreached";
   return text_cell(text);
 }
 

@@ -117,10 +117,11 @@ void md_table(std::ostream& md, const Table& t) {
 constexpr const char* kFalsifyTitle = "Adversarial rollouts";
 constexpr const char* kFalsifyIntro =
     "Per unit with an adversarial search (cmt falsify against the unit's prediction, its N rollouts as the "
-    "random baseline; docs/falsify.md): search rollouts of both phases, the motion ends outside the "
+    "random baseline; docs/falsify.md): search rollouts of every phase, the motion ends outside the "
     "prediction the search found, the largest signed distance from each motion's predicted set the "
-    "falsification reached (> 0: outside), coverage before (the N rollouts) and after (every rollout), and "
-    "the predicted pieces no rollout ended in.";
+    "falsification reached (> 0: outside), coverage before (the N rollouts) and after (every rollout), "
+    "the predicted pieces no rollout ended in, and the gap search's targets (coverage lattice points far "
+    "from every end) reached and not.";
 
 void md_falsify(std::ostream& md, const Table& t) {
   if (t.rows.empty()) return;

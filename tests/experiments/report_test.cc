@@ -899,6 +899,30 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
   EXPECT_TRUE(content.falsify.rows.empty());
   EXPECT_EQ(cmt::report::render_html(content).find("Adversarial rollouts"), std::string::npos);
   EXPECT_EQ(cmt::report::render_markdown(content).find("Adversarial rollouts"), std::string::npos);
+
+  // The gaps cell: "-" without a gap search, "0/0 (no gap)" when it found nothing uncovered, and at most
+  // three unreached gaps, the nearest approaches first.
+  const auto gaps_cell = [&](const json& falsify) {
+    cmt::report::ConfigRow row = plain;
+    row.metrics->falsify = falsify;
+    const cmt::report::ReportContent c = cmt::report::build_report_content(db, {section_of(row)});
+    EXPECT_EQ(c.falsify.rows.size(), 1u);
+    return c.falsify.rows.empty() ? std::string() : c.falsify.rows[0].back().at(0).text;
+  };
+  json f = falsify_json_of_config1();
+  f.erase("gaps");
+  EXPECT_EQ(gaps_cell(f), "-");
+  f["gaps"] = json::array();
+  f["gap_budget"] = 400;
+  EXPECT_EQ(gaps_cell(f), "0/0 (no gap)");
+  for (double closest : {0.9, 0.2, 0.5, 0.7})
+    f["gaps"].push_back(
+        {{"motion", "p1"}, {"point", {closest, 0, 0}}, {"closest_end", closest}, {"reached", false}});
+  f["gaps_reached"] = 0;
+  EXPECT_EQ(
+      gaps_cell(f),
+      "0/4; unreached: p1 at (0.2, 0, 0), closest end 0.2; unreached: p1 at (0.5, 0, 0), closest end 0.5; "
+      "unreached: p1 at (0.7, 0, 0), closest end 0.7; and 1 more unreached");
 }
 
 TEST(Report, BadDatabasesExitWithStatus2) {

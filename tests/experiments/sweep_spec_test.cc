@@ -302,9 +302,23 @@ TEST(SweepSpec, FalsifyBudgetsAreUnitFieldsWithPerEntryOverrides) {
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1), base);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0),
             make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1));
-  // The gap budget alone changes the key; a search without one keeps the key it had before it existed.
-  const std::string searched =
-      make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0);
+  // The gap budget alone changes the key; a search without one keeps the key it had before the gap budget
+  // existed: its fields built by hand (docs/sweeps.md "Unit key").
+  const std::string searched = fnv1a128_hex(HashInput()
+                                                .add("cmt-sweep-unit/2")
+                                                .add(yaml)
+                                                .add("down")
+                                                .add(10)
+                                                .add("1")
+                                                .add("uniform")
+                                                .add("impedance")
+                                                .add(0)
+                                                .add(400)
+                                                .add("0.0")
+                                                .add("falsify")
+                                                .add(1)
+                                                .add(0)
+                                                .text());
   EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 5), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 5), base);

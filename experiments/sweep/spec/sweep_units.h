@@ -27,8 +27,8 @@ struct SweepUnit {
   int sticking_trials = 0;
   int counterexample_budget = 0;
   double verify_budget_seconds = 0;  // 0 = no limit (experiments/common/verifier_budget.h)
-  // The adversarial-rollout search after the validation (docs/falsify.md "In sweeps and the report"); both
-  // 0: none.
+  // The adversarial-rollout search after the validation (docs/falsify.md "In sweeps and the report"); all
+  // three 0: none.
   int falsify_budget = 0;
   int falsify_coverage_budget = 0;
   int falsify_gap_budget = 0;
