@@ -22,6 +22,24 @@ using test::source_task;
 const std::string kTwoBlocks = source_task("two_blocks");
 const std::string kCube = source_task("cube");
 
+// The unit key's fields as they were before the falsify search existed (docs/sweeps.md "Unit key"), built by
+// hand for two_blocks `down` at n 10, seed 1, uniform, impedance, no sticking trials, counterexample budget
+// 400, no verifier budget.
+HashInput down_unit_fields(const std::string& yaml) {
+  HashInput in;
+  in.add("cmt-sweep-unit/2")
+      .add(yaml)
+      .add("down")
+      .add(10)
+      .add("1")
+      .add("uniform")
+      .add("impedance")
+      .add(0)
+      .add(400)
+      .add("0.0");
+  return in;
+}
+
 // A spec with two_blocks (strategies down, slide) and the given extra lines under the task entry.
 std::string two_blocks_spec(const std::string& task_extra, const std::string& top = "n: 10\nseeds: [1]\n") {
   return top + "tasks:\n  - file: " + kTwoBlocks + "\n    strategies: [down, slide]\n" + task_extra;
@@ -304,21 +322,7 @@ TEST(SweepSpec, FalsifyBudgetsAreUnitFieldsWithPerEntryOverrides) {
             make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 1));
   // The gap budget alone changes the key; a search without one keeps the key it had before the gap budget
   // existed: its fields built by hand (docs/sweeps.md "Unit key").
-  const std::string searched = fnv1a128_hex(HashInput()
-                                                .add("cmt-sweep-unit/2")
-                                                .add(yaml)
-                                                .add("down")
-                                                .add(10)
-                                                .add("1")
-                                                .add("uniform")
-                                                .add("impedance")
-                                                .add(0)
-                                                .add(400)
-                                                .add("0.0")
-                                                .add("falsify")
-                                                .add(1)
-                                                .add(0)
-                                                .text());
+  const std::string searched = fnv1a128_hex(down_unit_fields(yaml).add("falsify").add(1).add(0).text());
   EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 5), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 5), base);
@@ -368,18 +372,7 @@ TEST(SweepSpec, UnitKeyWithoutFalsifyIsTheOneBeforeTheSearchExisted) {
   EXPECT_EQ(units[0].unit_key, "57cb2f78eef15965852ab58bf069ade8");
   // The key's fields as they were (docs/sweeps.md "Unit key"), built by hand.
   const std::string yaml = units[0].task_yaml;
-  const std::string before = fnv1a128_hex(HashInput()
-                                              .add("cmt-sweep-unit/2")
-                                              .add(yaml)
-                                              .add("down")
-                                              .add(10)
-                                              .add("1")
-                                              .add("uniform")
-                                              .add("impedance")
-                                              .add(0)
-                                              .add(400)
-                                              .add("0.0")
-                                              .text());
+  const std::string before = fnv1a128_hex(down_unit_fields(yaml).text());
   EXPECT_EQ(units[0].unit_key, before);
   EXPECT_EQ(
       make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, ControllerForm::kImpedance, 0, 400, 0, 0, 0),
