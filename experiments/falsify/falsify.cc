@@ -159,6 +159,9 @@ BatchScore batch_score(const Context& c, const std::string& how, std::vector<Rol
       const Observed o = observe(c, outs[i]);
       r->unstable += o.unstable;
       collect_findings(c, outs[i], o, how, xs[i], r);
+      for (const ObservedEnd& e : o.ends)
+        if (e.motion < static_cast<int>(c.steps.size()))
+          r->search_ends.push_back({how, e.motion, e.end, e.inside});
       scores.push_back(score_one(o));
       all->push_back(std::move(outs[i]));
     }

@@ -78,6 +78,15 @@ struct CoverageGap {
   int rollouts = 0;
 };
 
+// A search rollout's end of a predicted motion (every phase but the random one): the report draws them per
+// motion beside the random ends (docs/falsify.md "In sweeps and the report").
+struct SearchEnd {
+  std::string how;  // "falsify", "coverage" or "gap"
+  int step = 0;     // the prediction step
+  Vec3 end = Vec3::Zero();
+  bool inside = false;  // within the contact tolerance of the step's predicted set
+};
+
 struct FalsifyResult {
   std::string task, strategy;
   FalsifyOptions options;
@@ -95,7 +104,8 @@ struct FalsifyResult {
   double coverage_before = 0, coverage_after = 0;
   double coverage_radius = 0;  // the random baseline's (both are measured at it)
   std::vector<PieceCoverage> pieces;
-  std::vector<CoverageGap> gaps;  // in the order searched
+  std::vector<CoverageGap> gaps;       // in the order searched
+  std::vector<SearchEnd> search_ends;  // in the order run (unstable rollouts have none)
   double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0, gap_seconds = 0;
 };
 

@@ -68,6 +68,10 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
                     {"reached", g.reached},
                     {"rollouts", g.rollouts}});
   }
+  nlohmann::json search_ends = nlohmann::json::array();
+  for (const SearchEnd& e : r.search_ends)
+    search_ends.push_back(
+        {{"how", e.how}, {"step", e.step}, {"end", point_json(e.end, dim)}, {"inside", e.inside}});
   return {{"task", r.task},
           {"strategy", r.strategy},
           {"reliable", r.prediction.reliable},
@@ -97,6 +101,7 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
           {"unreached_pieces", unreached},
           {"gaps", gaps},
           {"gaps_reached", gaps_reached},
+          {"search_ends", search_ends},
           {"verify_seconds", r.verify_seconds},
           {"random_seconds", r.random_seconds},
           {"search_seconds", r.search_seconds},

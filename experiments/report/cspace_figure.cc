@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
@@ -22,8 +23,11 @@ constexpr double kPieceLineShade = 0.75;  // predicted edges and vertices: this 
 constexpr int kInsideDotRadius = 3;       // px: observed ends inside the prediction
 constexpr int kOutsideCrossHalf = 6;      // px: observed ends outside it
 constexpr int kOutsideCrossThickness = 2;
-constexpr int kPlannedCellThickness = 2;  // px: outlines of a planned motion's cell
-constexpr int kPlannedMarkerRadius = 7;   // px: a planned motion's commanded position
+constexpr int kPlannedCellThickness = 2;   // px: outlines of a planned motion's cell
+constexpr int kPlannedMarkerRadius = 7;    // px: a planned motion's commanded position
+constexpr int kSearchEndRadius = 4;        // px: the adversarial search's ends
+constexpr int kUnreachedThickness = 3;     // px: outlines of predicted pieces no rollout reached
+constexpr int kUnreachedVertexRadius = 9;  // px: the same for a vertex
 
 struct ViewSpec {
   int u, v;            // coordinate indices shown right and up
@@ -245,7 +249,93 @@ void draw_planned(PlotCanvas& canvas, const std::vector<PlannedMotionLayer>& pla
   }
 }
 
+// The search phases in drawing order, with their markers (docs/falsify.md): the random ends are the
+// figure's rollouts.
+struct SearchPhase {
+  const char* how;
+  const char* label;
+  LegendMarker marker;
+  cv::Scalar color;
+};
+const SearchPhase kSearchPhases[] = {
+    {"falsify", "falsification search end", LegendMarker::kTriangle, rgb(0x0072b2)},
+    {"coverage", "coverage search end", LegendMarker::kDiamond, rgb(0xcc79a7)},
+    {"gap", "gap search end", LegendMarker::kSquare, rgb(0x56b4e9)},
+};
+
+// Unreached pieces and gaps first (outlines under the ends), then the ends inside by phase, then the ends
+// outside as red crosses. Returns which legend rows apply: per phase, any outside, any unreached.
+struct SearchDrawn {
+  bool phase[3] = {false, false, false};
+  bool outside = false, pieces = false, gaps = false;
+};
+SearchDrawn draw_search(PlotCanvas& canvas, const SearchLayer& search, const ViewSpec& s) {
+  SearchDrawn drawn;
+  for (const std::vector<Vec3>& piece : search.unreached_pieces) {
+    const std::vector<Point2> pts = project(piece, s);
+    if (pts.size() == 1)
+      canvas.ring(pts[0], kUnreachedVertexRadius, kInk, kUnreachedThickness);
+    else if (!pts.empty())
+      canvas.polyline(pts, pts.size() >= 3, kInk, kUnreachedThickness);
+    drawn.pieces = drawn.pieces || !pts.empty();
+  }
+  for (const Vec3& g : search.unreached_gaps) {
+    canvas.circle(project(g, s), search.coverage_radius, kInk, false, 1);
+    canvas.dot(project(g, s), 2, kInk);
+    drawn.gaps = true;
+  }
+  for (std::size_t k = 0; k < std::size(kSearchPhases); ++k)
+    for (const SearchLayer::End& e : search.ends)
+      if (e.inside && e.how == kSearchPhases[k].how) {
+        canvas.marker(project(e.end, s), kSearchPhases[k].marker, kSearchEndRadius, kSearchPhases[k].color);
+        drawn.phase[k] = true;
+      }
+  for (const SearchLayer::End& e : search.ends)
+    if (!e.inside) {
+      canvas.cross(project(e.end, s), kOutsideCrossHalf, kOutsideRed, kOutsideCrossThickness);
+      drawn.outside = true;
+    }
+  return drawn;
+}
+
+void add_search_legend(PlotCanvas& canvas, const SearchDrawn& drawn) {
+  for (std::size_t k = 0; k < std::size(kSearchPhases); ++k)
+    if (drawn.phase[k])
+      canvas.add_legend({kSearchPhases[k].label, kSearchPhases[k].color, kSearchPhases[k].marker});
+  if (drawn.pieces) canvas.add_legend({"piece no rollout reached", kInk, LegendMarker::kLine});
+  if (drawn.gaps) canvas.add_legend({"gap not covered (ring)", kInk, LegendMarker::kOutline});
+}
+
+double projected_area(const std::vector<Vec3>& polygon, const ViewSpec& s) {
+  double twice = 0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Point2 a = project(polygon[i], s), b = project(polygon[(i + 1) % polygon.size()], s);
+    twice += a.x * b.y - b.x * a.y;
+  }
+  return std::isfinite(twice) ? 0.5 * std::abs(twice) : 0.0;
+}
+
+double projected_length(const Vec3& a, const Vec3& b, const ViewSpec& s) {
+  const double length = cv::norm(project(b, s) - project(a, s));
+  return std::isfinite(length) ? length : 0.0;
+}
+
 }  // namespace
+
+View widest_view(const Task& task, const std::vector<PredictedPiece>& pieces) {
+  View best = View::kFront;
+  std::pair<double, double> best_size(-1, -1);
+  for (View view : views_for(task)) {
+    std::pair<double, double> size(0, 0);  // faces' area, then edges' length
+    for (const PredictedPiece& p : pieces)
+      if (p.polygon.size() >= 3)
+        size.first += projected_area(p.polygon, spec(view));
+      else if (p.polygon.size() == 2)
+        size.second += projected_length(p.polygon[0], p.polygon[1], spec(view));
+    if (size > best_size) best = view, best_size = size;
+  }
+  return best;
+}
 
 PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSize& size) {
   const ViewSpec s = spec(view);
@@ -286,6 +376,9 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
       }
   }
 
+  SearchDrawn search_drawn;
+  if (d.search) search_drawn = draw_search(canvas, *d.search, s);
+
   canvas.add_legend({"C-space face", kFaceFill, LegendMarker::kFill});
   canvas.add_legend({"C-space face, back side", kBackFaceLine, LegendMarker::kOutline});
   canvas.add_legend({"goal region", kGoalFill, LegendMarker::kFill});
@@ -300,11 +393,15 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
         canvas.add_legend({"predicted edge/vertex, " + motions[i],
                            darker(motion_color(i, n), kPieceLineShade), LegendMarker::kLine});
     }
-  if (any_inside)
+  if (d.search && any_inside)
+    canvas.add_legend({"random end in set", darker(motion_color(0, n)), LegendMarker::kDot});
+  else if (any_inside)
     for (int i = 0; i < n; ++i)
       canvas.add_legend(
           {"observed end in set, " + motions[i], darker(motion_color(i, n)), LegendMarker::kDot});
-  if (any_outside) canvas.add_legend({"observed end outside set", kOutsideRed, LegendMarker::kCross});
+  if (d.search) add_search_legend(canvas, search_drawn);
+  if (any_outside || search_drawn.outside)
+    canvas.add_legend({"observed end outside set", kOutsideRed, LegendMarker::kCross});
   if (d.planned)
     for (std::size_t i = 0; i < d.planned->size(); ++i) {
       const PlannedMotionLayer& m = (*d.planned)[i];

@@ -31,6 +31,21 @@ struct PlannedMotionLayer {
   std::vector<AxisBox> sensed_positions = {};  // empty: sticking termination only
 };
 
+// The adversarial search's layer of one motion's figure (`cmt falsify`, docs/falsify.md "In sweeps and the
+// report"): its rollouts' ends of that motion by phase, the predicted pieces no rollout ended in, and the
+// coverage gaps no search covered, each drawn with the coverage radius around it.
+struct SearchLayer {
+  struct End {
+    std::string how;  // "falsify", "coverage" or "gap"
+    Vec3 end = Vec3::Zero();
+    bool inside = false;
+  };
+  std::vector<End> ends;
+  std::vector<std::vector<Vec3>> unreached_pieces;  // polygon, segment ends or the vertex
+  std::vector<Vec3> unreached_gaps;
+  double coverage_radius = 0;
+};
+
 struct CSpaceFigureData {
   const LoadedTask* task = nullptr;
   std::vector<std::string> motions;           // the strategy's motion names, in order
@@ -38,10 +53,15 @@ struct CSpaceFigureData {
   const std::vector<RolloutRow>* rollouts = nullptr;
   std::string title;  // what the figure is of, e.g. "cube / stick {"friction":0.3}"
   const std::vector<PlannedMotionLayer>* planned = nullptr;  // a plan's motions, in order (colors as motions)
+  const SearchLayer* search = nullptr;                       // a one-motion figure's adversarial search
 };
 
 // Color of motion i of n: the last motion (whose set is judged against the goal) is highlighted.
 cv::Scalar motion_color(int i, int n);
+
+// The view in which the pieces' projections cover the most area (the front view of a planar task; ties go
+// to the earlier of front, top, side): a one-motion figure shows its set where it is widest.
+View widest_view(const Task& task, const std::vector<PredictedPiece>& pieces);
 
 // Draws one view, finished (axes, legend), ready to save.
 PlotCanvas draw_cspace_view(const CSpaceFigureData& data, View view, const FigureSize& size = {});

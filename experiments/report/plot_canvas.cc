@@ -149,6 +149,10 @@ void PlotCanvas::circle(const Point2& center, double r, const cv::Scalar& color,
   cv::circle(area_, pixel(center), std::max(1, radius), color, fill ? cv::FILLED : thickness, cv::LINE_8);
 }
 
+void PlotCanvas::ring(const Point2& p, int radius_px, const cv::Scalar& color, int thickness) {
+  if (finite(p)) cv::circle(area_, pixel(p), std::max(1, radius_px), color, thickness, cv::LINE_8);
+}
+
 void PlotCanvas::rectangle(const Point2& a, const Point2& b, const cv::Scalar& color) {
   if (finite(a) && finite(b)) cv::rectangle(area_, pixel(a), pixel(b), color, cv::FILLED, cv::LINE_8);
 }

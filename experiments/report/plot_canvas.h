@@ -57,6 +57,8 @@ class PlotCanvas {
   void cross(const Point2& p, int half_px, const cv::Scalar& color, int thickness);
   // A circle of data radius r (equal-aspect plots only), filled when fill is true.
   void circle(const Point2& center, double r, const cv::Scalar& color, bool fill, int thickness = 1);
+  // A circle outline of radius_px pixels around p (a marker that keeps its size at any scale).
+  void ring(const Point2& p, int radius_px, const cv::Scalar& color, int thickness);
   void rectangle(const Point2& a, const Point2& b, const cv::Scalar& color);  // filled
   // A point marker as the legend draws it (plot_legend.h draw_point_marker), radius_px around p.
   void marker(const Point2& p, LegendMarker shape, int radius_px, const cv::Scalar& color);

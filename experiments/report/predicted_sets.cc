@@ -10,22 +10,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double coordinate(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : kNaN; }
 
-Vec3 point(const nlohmann::json& j, int dimension, const std::string& where) {
-  const std::size_t expected = dimension == 2 ? 2 : 3;
-  if (!j.is_array() || j.size() != expected)
-    throw std::invalid_argument(where + ": expected a point of " + std::to_string(expected) + " coordinates");
-  if (dimension == 2) return {coordinate(j[0]), 0.0, coordinate(j[1])};
-  return {coordinate(j[0]), coordinate(j[1]), coordinate(j[2])};
-}
-
-std::vector<Vec3> points(const nlohmann::json& j, int dimension, const std::string& where) {
-  if (!j.is_array()) throw std::invalid_argument(where + ": expected a list of points");
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i < j.size(); ++i)
-    out.push_back(point(j[i], dimension, where + "[" + std::to_string(i) + "]"));
-  return out;
-}
-
 PredictedPiece piece(const nlohmann::json& j, int dimension, const std::string& where) {
   if (!j.is_object()) throw std::invalid_argument(where + ": expected an object");
   PredictedPiece p;
@@ -34,21 +18,37 @@ PredictedPiece piece(const nlohmann::json& j, int dimension, const std::string& 
   p.kind = j.value("kind", "");
   if (p.kind == "free") {
     if (!j.contains("center")) throw std::invalid_argument(where + ".center: missing");
-    p.center = point(j["center"], dimension, where + ".center");
+    p.center = json_point(j["center"], dimension, where + ".center");
     p.radius = j.contains("radius") ? coordinate(j["radius"]) : kNaN;
     return p;
   }
   if (!j.contains("polygon")) throw std::invalid_argument(where + ".polygon: missing");
-  p.polygon = points(j["polygon"], dimension, where + ".polygon");
+  p.polygon = json_points(j["polygon"], dimension, where + ".polygon");
   if (j.contains("holes")) {
     if (!j["holes"].is_array()) throw std::invalid_argument(where + ".holes: expected a list of polygons");
     for (std::size_t h = 0; h < j["holes"].size(); ++h)
-      p.holes.push_back(points(j["holes"][h], dimension, where + ".holes[" + std::to_string(h) + "]"));
+      p.holes.push_back(json_points(j["holes"][h], dimension, where + ".holes[" + std::to_string(h) + "]"));
   }
   return p;
 }
 
 }  // namespace
+
+Vec3 json_point(const nlohmann::json& j, int dimension, const std::string& where) {
+  const std::size_t expected = dimension == 2 ? 2 : 3;
+  if (!j.is_array() || j.size() != expected)
+    throw std::invalid_argument(where + ": expected a point of " + std::to_string(expected) + " coordinates");
+  if (dimension == 2) return {coordinate(j[0]), 0.0, coordinate(j[1])};
+  return {coordinate(j[0]), coordinate(j[1]), coordinate(j[2])};
+}
+
+std::vector<Vec3> json_points(const nlohmann::json& j, int dimension, const std::string& where) {
+  if (!j.is_array()) throw std::invalid_argument(where + ": expected a list of points");
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < j.size(); ++i)
+    out.push_back(json_point(j[i], dimension, where + "[" + std::to_string(i) + "]"));
+  return out;
+}
 
 PredictedSets parse_predicted_sets(const nlohmann::json& verify_json, int dimension) {
   if (!verify_json.is_object()) throw std::invalid_argument("expected a JSON object");

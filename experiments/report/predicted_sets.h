@@ -33,6 +33,11 @@ struct PredictedSets {
   int failed_step = -1;
 };
 
+// A point of a command's JSON ([x, y, z], or [x, z] for a planar task) in 3-D configuration coordinates;
+// null coordinates become NaN. Throws std::invalid_argument naming `where` for another shape.
+Vec3 json_point(const nlohmann::json& j, int dimension, const std::string& where);
+std::vector<Vec3> json_points(const nlohmann::json& j, int dimension, const std::string& where);
+
 // Throws std::invalid_argument naming the JSON path (e.g. "steps[0].termination[2].polygon[1]") when the
 // object does not have the verify_json shape. Points with null (non-finite) coordinates are kept as NaN; the
 // figures skip them.

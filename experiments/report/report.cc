@@ -12,6 +12,7 @@
 #include "experiments/report/cspace_figure.h"
 #include "experiments/report/edr_figure.h"
 #include "experiments/report/extremes_figure.h"
+#include "experiments/report/falsify_figure.h"
 #include "experiments/report/plan_graph_figure.h"
 #include "experiments/report/predicted_sets.h"
 #include "experiments/report/report_documents.h"
@@ -90,6 +91,7 @@ class ReportBuilder {
       save(canvas, c, view_name(view), std::string(view_name(view)) + " view", s);
     }
     write_view(data, c, s);
+    if (prediction) save_falsify_figures(c, *task, *prediction, s);
     if (c.metrics && !c.metrics->sticking.is_null()) {
       std::optional<PlotCanvas> canvas;
       try {
@@ -134,6 +136,26 @@ class ReportBuilder {
       s.view_page = page;
     } catch (const std::runtime_error& e) {
       s.notes.push_back(std::string("no 3-D page: ") + e.what());
+    }
+  }
+
+  // Per motion of an adversarial search (falsify_figure.h): its figure in the view where its set is widest.
+  void save_falsify_figures(const ConfigRow& c, const LoadedTask& task, const PredictedSets& prediction,
+                            ConfigSection& s) {
+    if (!c.metrics || !c.metrics->falsify.is_object()) return;
+    std::vector<FalsifyMotionFigure> figures;
+    try {
+      figures = falsify_motion_figures(c.metrics->falsify, prediction, c.rollouts, task.task);
+    } catch (const std::exception& e) {  // std::invalid_argument, nlohmann::json type errors
+      throw TaskError(db_.path.string(), key(c, "metrics.falsify"), e.what());
+    }
+    for (const FalsifyMotionFigure& f : figures) {
+      const CSpaceFigureData data{
+          &task,   {f.motion}, &f.prediction, &f.random, s.label + ", search of " + f.motion,
+          nullptr, &f.search};
+      const PlotCanvas canvas = draw_cspace_view(data, f.view);
+      save(canvas, c, "falsify_" + std::to_string(f.step),
+           "adversarial search, " + f.motion + " (" + view_name(f.view) + " view)", s);
     }
   }
 

@@ -77,7 +77,10 @@ constexpr const char* kSummaryResultColumns =
     "m.verify_seconds, m.rollout_seconds, c.falsify_budget, c.falsify_coverage_budget, "
     "json_extract(m.falsify, '$.rollouts') AS falsify_rollouts, json_extract(m.falsify, '$.outside') AS "
     "falsify_outside, json_extract(m.falsify, '$.coverage_before') AS falsify_coverage_before, "
-    "json_extract(m.falsify, '$.coverage_after') AS falsify_coverage_after";
+    "json_extract(m.falsify, '$.coverage_after') AS falsify_coverage_after, "
+    "json_extract(m.falsify, '$.gap_budget') AS falsify_gap_budget, json_array_length(m.falsify, '$.gaps') "
+    "AS "
+    "falsify_gaps, json_extract(m.falsify, '$.gaps_reached') AS falsify_gaps_reached";
 
 void write_summary(SqliteDb& db, const std::filesystem::path& path) {
   const std::string from =

@@ -130,6 +130,20 @@ TEST(Falsify, FindsEndsOutsideAShrunkPredictionThatRandomSamplingMostlyMisses) {
   EXPECT_EQ(s.findings.front().how, "falsify");
   EXPECT_GT(s.findings.front().end.y(), 1);
   EXPECT_GT(s.best_signed_distance[0], 0);
+  // The search's ends, for the report's figure: one per stable rollout, its ends outside the ones counted.
+  EXPECT_EQ(static_cast<int>(s.search_ends.size()), s.rollouts - s.unstable);
+  int ends_outside = 0;
+  for (const SearchEnd& e : s.search_ends) {
+    EXPECT_EQ(e.how, "falsify");
+    EXPECT_EQ(e.step, 0);
+    EXPECT_EQ(e.inside, distance_to_prediction(prediction.steps[0], e.end) <=
+                            kContactRelativeTolerance * task->cspace.scale())
+        << e.end.transpose() << " distance " << distance_to_prediction(prediction.steps[0], e.end);
+    ends_outside += !e.inside;
+  }
+  EXPECT_EQ(ends_outside, s.outside);
+  EXPECT_TRUE(std::any_of(s.search_ends.begin(), s.search_ends.end(),
+                          [&](const SearchEnd& e) { return !e.inside && e.end == s.findings.front().end; }));
   // The finding replays from its vector alone.
   const ErrorVectorLayout layout(task->task, strategy, s.shape);
   ScriptedErrors errors(task->task, layout, s.findings.front().errors);
@@ -179,6 +193,8 @@ TEST(Falsify, GapSearchFillsTheGapsARandomBaselineLeft) {
   EXPECT_GE(reached_beyond_zero, 1);
   EXPECT_EQ(spent, g.rollouts);
   EXPECT_LE(g.rollouts, o.gap_budget);
+  EXPECT_EQ(static_cast<int>(g.search_ends.size()), g.rollouts - g.unstable);
+  for (const SearchEnd& e : g.search_ends) EXPECT_EQ(e.how, "gap");
 }
 
 // The same strategy under the verifier model `cmt falsify` uses (slow slides count as stops,
@@ -229,6 +245,11 @@ TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
   for (std::size_t k = 0; k < one.gaps.size(); ++k) {
     EXPECT_EQ(one.gaps[k].point, two.gaps[k].point);
     EXPECT_EQ(one.gaps[k].closest, two.gaps[k].closest);
+  }
+  ASSERT_EQ(one.search_ends.size(), two.search_ends.size());
+  for (std::size_t k = 0; k < one.search_ends.size(); ++k) {
+    EXPECT_EQ(one.search_ends[k].how, two.search_ends[k].how);
+    EXPECT_EQ(one.search_ends[k].end, two.search_ends[k].end);
   }
 }
 

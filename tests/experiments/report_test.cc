@@ -925,6 +925,67 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
       "unreached: p1 at (0.7, 0, 0), closest end 0.7; and 1 more unreached");
 }
 
+// The per-motion figure of the search (experiments/report/falsify_figure.h): config 1's square lies on the
+// cube's bottom, so the top view shows it widest. The search's ends are drawn by phase, an end outside as a
+// red cross, the unreached piece's outline and the unreached gap in ink; the random ends keep their dots.
+TEST(Report, AdversarialSearchFigureShowsEachPhaseAndWhatStayedUnreached) {
+  const std::vector<double> falsify_end = {0.1, 0.1, -1}, gap_end = {-0.3, 0.05, -1},
+                            outside = {0.1, 0.8, -1};
+  json f = falsify_json_of_config1();
+  f["coverage_radius"] = 0.05;
+  f["pieces"][1]["points"] = {{1, -1, -1}, {1, 1, -1}};  // e3, unreached
+  f["search_ends"] = {{{"how", "falsify"}, {"step", 0}, {"end", falsify_end}, {"inside", true}},
+                      {{"how", "gap"}, {"step", 0}, {"end", gap_end}, {"inside", true}},
+                      {{"how", "coverage"}, {"step", 0}, {"end", outside}, {"inside", false}}};
+  const Report r = make_report("falsify_figure", [&](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {f.dump()});
+  });
+  ASSERT_EQ(r.status, 0);
+  const json& fig = figure(r, 1, "falsify_0");
+  const cv::Mat img = load(r, fig);
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(fig["y"]["label"], "y (in)");  // the top view
+  EXPECT_NE(r.html.find("adversarial search, p1 (top view)"), std::string::npos);
+  const auto at = [&](const std::vector<double>& p) { return img.at<cv::Vec3b>(to_pixel(fig, p[0], p[1])); };
+  EXPECT_EQ(at(falsify_end), legend_color(fig, "falsification search end"));
+  EXPECT_EQ(at(gap_end), legend_color(fig, "gap search end"));
+  EXPECT_NE(legend_color(fig, "falsification search end"), legend_color(fig, "gap search end"));
+  const cv::Vec3b red(0, 0, 255), ink(0, 0, 0);
+  EXPECT_EQ(at(outside), red);
+  EXPECT_EQ(at(kInsideEnds[0]), legend_color(fig, "random end in set"));
+  EXPECT_NE(at(kInsideEnds[0]), red);
+  EXPECT_EQ(at({1, 0}), ink);        // the unreached edge's outline, midway (the start edge is at y = -1)
+  EXPECT_EQ(at({-0.9, 0.9}), ink);   // the unreached gap's centre
+  EXPECT_NE(at({-0.9, 0.75}), ink);  // 3 coverage radii from it: no ink
+  EXPECT_EQ(legend_color(fig, "piece no rollout reached"), ink);
+  EXPECT_EQ(legend_color(fig, "gap not covered"), ink);
+  // Only config 1 has a search.
+  for (const json& other : r.figures["figures"]) {
+    if (other["kind"].get<std::string>().rfind("falsify", 0) == 0) {
+      EXPECT_EQ(other["config_id"], 1);
+    }
+  }
+
+  // A search end that is not a point: exit 2, naming the column and the JSON path.
+  const fs::path base = fs::path(testing::TempDir()) / "cmt_report_test_falsify_figure_bad";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  write_results_db(base / "results.sqlite");
+  f["search_ends"][1]["end"] = {1, 2};
+  {
+    Db edit(base / "results.sqlite", false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {f.dump()});
+  }
+  int status = -1;
+  const json e = report_error(base / "results.sqlite", base / "out", &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_EQ(e["key"], "metrics.falsify (config_id 1)");
+  EXPECT_NE(e["reason"].get<std::string>().find("search_ends[1].end"), std::string::npos) << e.dump();
+}
+
 TEST(Report, BadDatabasesExitWithStatus2) {
   const fs::path base = fs::path(testing::TempDir()) / "cmt_report_test_bad";
   fs::remove_all(base);

@@ -265,6 +265,10 @@ TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
   EXPECT_LE(gap_rollouts, 8);
   EXPECT_EQ(fa["outside"], 0);                                      // slide is sound
   EXPECT_EQ(fa["coverage_before"].get<double>(), std::stod(a[2]));  // the validation's own coverage
+  // One end per stable search rollout (slide has one motion), each with its phase, for the report's figure.
+  EXPECT_EQ(fa["search_ends"].size(), fa["rollouts"].get<std::size_t>() - fa["unstable"].get<std::size_t>());
+  for (const auto& e : fa["search_ends"])
+    EXPECT_TRUE(e["how"] == "falsify" || e["how"] == "coverage" || e["how"] == "gap");
   for (const char* timing :
        {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds", "gap_seconds"}) {
     fa.erase(timing);
@@ -285,6 +289,7 @@ TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
                           std::to_string(fa["rollouts"].get<int>()),
                       section),
             std::string::npos);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "report" / "figures" / "config_1_falsify_0.png"));
 }
 
 TEST_F(SweepCli, ExportCsvWritesEveryTable) {
