@@ -31,6 +31,17 @@ void print_summary(std::ostream& os, const FalsifyResult& r) {
   for (const CoverageGap& g : r.gaps) gaps_reached += g.reached;
   if (!r.gaps.empty())
     os << "  gap search: " << gaps_reached << " of " << r.gaps.size() << " targeted gaps reached\n";
+  if (!r.prediction.reliable) {
+    os << "  " << r.failures << " failed rollouts";
+    if (r.first_failure)
+      os << ", first (" << r.first_failure->how << ") "
+         << "at goal distance " << r.first_failure->distance << "\n    " << r.first_failure->replay << "\n";
+    else
+      os << (r.failure_searched
+                 ? " after a failure search of " + std::to_string(r.failure_rollouts) + " rollouts"
+                 : std::string(" (no failure search)"))
+         << ": a false alarm candidate\n";
+  }
   for (const FalsifyFinding& f : r.findings)
     os << "  SOUNDNESS BUG (" << f.how
        << "): " << (f.motion.empty() ? "failed under a reliable verdict" : f.motion) << " at distance "
@@ -65,6 +76,12 @@ void add_falsify_command(CLI::App& app, CommandState& state) {
       ->capture_default_str();
   cmd->add_option("--gap-rollouts", o->falsify.gap_rollouts, "gap search rollouts per gap at most")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  o->falsify.failure_budget = 400;
+  cmd->add_option("--failure-budget", o->falsify.failure_budget,
+                  "failure search rollouts, under an unreliable verdict only: a search for a rollout that "
+                  "fails, toward the predicted places of failure")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--random", o->falsify.random, "random rollouts first (the baseline coverage)")
       ->check(CLI::NonNegativeNumber)

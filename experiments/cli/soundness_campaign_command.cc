@@ -1,14 +1,17 @@
 // `cmt soundness-campaign --tasks N [--first I] --seed S [-n ROLLOUTS] [--threads T] [--verifier-budget SEC]
-// [--no-minimize] [--out DIR] --json`: the random-task soundness campaign
-// (experiments/validation/soundness_campaign.h). Exit 0 when every task was sound, 1 when a soundness bug was
-// found (saved under DIR/bugs/ with its replay command), 2 on bad usage. Rerunning with the same seed and
-// rollout count resumes from DIR/results.jsonl.
+// [--no-minimize] [--false-alarm-budget N] [--out DIR] --json`: the random-task soundness campaign
+// (experiments/validation/soundness_campaign.h), with `cmt falsify`'s failure search as its false-alarm
+// check. Exit 0 when every task was sound, 1 when a soundness bug was found (saved under DIR/bugs/ with its
+// replay command), 2 on bad usage. Rerunning with the same seed and rollout count resumes from
+// DIR/results.jsonl.
 #include <iostream>
 #include <thread>
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
+#include "experiments/falsify/falsify.h"
 #include "experiments/validation/soundness_campaign.h"
+#include "models/loaded_task.h"
 
 namespace cmt {
 
@@ -18,6 +21,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     std::string out = "out/soundness-campaign";
     bool no_minimize = false;
     int threads = 0;
+    int false_alarm_budget = 0;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("soundness-campaign",
@@ -38,6 +42,11 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--out", o->out, "output folder: results.jsonl (one line per task) and bugs/")
       ->capture_default_str();
   cmd->add_flag("--no-minimize", o->no_minimize, "save bugs as generated, without shrinking them");
+  cmd->add_option("--false-alarm-budget", o->false_alarm_budget,
+                  "failure search rollouts (cmt falsify's) for each task verified unreliable whose rollouts "
+                  "all succeeded (0: such tasks are saved under unreliable/ and counted, not searched)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
     if (o->campaign.tasks < 0) throw CLI::ValidationError("--tasks", "must be >= 0");
@@ -50,9 +59,30 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
         o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     o->campaign.out = o->out;
     o->campaign.minimize = !o->no_minimize;
+    if (o->false_alarm_budget > 0)
+      o->campaign.false_alarm_check = [budget = o->false_alarm_budget, threads = o->campaign.threads](
+                                          const std::filesystem::path& file, std::uint64_t seed) {
+        FalsifyOptions f;
+        f.budget = f.coverage_budget = f.gap_budget = f.random = 0;  // the validation ran the random ones
+        f.failure_budget = budget;
+        f.seed = seed;
+        f.threads = threads;
+        const FalsifyResult r = run_falsify(load_task(file), "s", f);
+        FalseAlarmCheck check;
+        check.failure_found = r.failures > 0;
+        check.rollouts = r.failure_rollouts;
+        check.closest = r.failure_closest;
+        if (r.first_failure) check.replay = r.first_failure->replay;
+        return check;
+      };
     const CampaignSummary s = run_soundness_campaign(o->campaign, [](const CampaignRecord& r) {
       std::cerr << "task " << r.index << ": " << r.status << " (" << r.description << ")";
       if (r.status == "bug") std::cerr << " -> " << r.saved << "\n    replay: " << r.replay;
+      if (r.false_alarm)
+        std::cerr << (*r.false_alarm
+                          ? "; unreliable, no failure found in " + std::to_string(r.check.rollouts) +
+                                " search rollouts: a false alarm"
+                          : "; unreliable, failure found: " + r.check.replay);
       std::cerr << "\n";
     });
     nlohmann::json bugs = nlohmann::json::array();
@@ -64,6 +94,9 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
                               {"invalid", s.invalid},
                               {"timed_out", s.timed_out},
                               {"reliable", s.reliable},
+                              {"false_alarm_candidates", s.candidates},
+                              {"false_alarms", s.false_alarms},
+                              {"failures_found", s.failures_found},
                               {"seed", o->campaign.seed},
                               {"rollouts", o->campaign.rollouts},
                               {"soundness_bugs", bugs},
@@ -72,7 +105,10 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
       print_json(j);
     else
       std::cout << s.run << " tasks: " << s.sound << " sound, " << s.bugs << " soundness bugs, " << s.invalid
-                << " invalid, " << s.timed_out << " timed out (" << s.reliable << " verified reliable)\n";
+                << " invalid, " << s.timed_out << " timed out (" << s.reliable << " verified reliable); "
+                << s.candidates << " verified unreliable with every rollout successful, of which "
+                << s.false_alarms << " false alarms and " << s.failures_found
+                << " failures found by the search\n";
     state.exit_status = s.bugs > 0 ? kExitFailureFound : kExitSuccess;
   });
 }

@@ -38,13 +38,15 @@ struct Context {
 struct Observed {
   std::vector<ObservedEnd> ends;
   bool unstable = false;
-  bool failed = false;  // terminated everything, stable, and not at the goal
+  bool failed = false;            // terminated everything, stable, and not at the goal
+  Vec3 final_end = Vec3::Zero();  // where the rollout ended
 };
 
 Observed observe(const Context& c, const RolloutOutcome& ro) {
   Observed o;
   o.unstable = ro.unstable;
   o.failed = !ro.success && !ro.unstable;
+  o.final_end = ro.end;
   if (ro.unstable) return o;
   std::vector<ObservedEnd> timeouts, unexpected;
   int unpredicted = 0;
@@ -134,6 +136,19 @@ void collect_findings(const Context& c, const RolloutOutcome& ro, const Observed
     r->findings.push_back({how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay()});
 }
 
+// Counts a stable failed rollout and keeps the first as the failure found.
+void count_failure(const Context& c, const RolloutOutcome& ro, const Observed& o, const std::string& how,
+                   const std::vector<double>& errors, FalsifyResult* r) {
+  if (!o.failed) return;
+  ++r->failures;
+  if (r->first_failure) return;
+  const std::string replay =
+      errors.empty()
+          ? replay_command(c.task, c.strategy.name, c.options.seed, ro.index, c.options.mode, c.options.form)
+          : error_replay_command(c.task, c.strategy.name, errors, c.options.form);
+  r->first_failure = FalsifyFinding{how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay};
+}
+
 // The falsification score of a rollout: its ends' largest signed distance.
 double falsify_score(const Context& c, const Observed& o, std::vector<double>* best_per_step) {
   if (o.unstable) return kNoScore;
@@ -159,6 +174,7 @@ BatchScore batch_score(const Context& c, const std::string& how, std::vector<Rol
       const Observed o = observe(c, outs[i]);
       r->unstable += o.unstable;
       collect_findings(c, outs[i], o, how, xs[i], r);
+      count_failure(c, outs[i], o, how, xs[i], r);
       for (const ObservedEnd& e : o.ends)
         if (e.motion < static_cast<int>(c.steps.size()))
           r->search_ends.push_back({how, e.motion, e.end, e.inside});
@@ -256,6 +272,48 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
     spent += cem.evaluations;
     mark_reached(c, std::span<const RolloutOutcome>(*all).subspan(first), "coverage", &r->pieces);
   }
+}
+
+// Distance of a final end from where the verifier says the strategy fails: the offending termination
+// pieces and a spring's free rest ball (as `cmt validate`'s counterexample search measures it); infinite
+// when it named no place (a motion that may slide forever, or fail to terminate).
+double miss_distance(const Context& c, const Vec3& end) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const ReachedPiece& p : c.prediction.outside_goal)
+    d = std::min(d, distance_to_piece(c.task.cspace, p, end));
+  const int fs = c.prediction.failed_step;
+  if (fs >= 0 && c.prediction.steps[static_cast<std::size_t>(fs)].free_termination) {
+    const VerifyStep& s = c.prediction.steps[static_cast<std::size_t>(fs)];
+    d = std::min(d, std::max(0.0, (end - s.free_center).norm() - s.free_radius));
+  }
+  return d;
+}
+
+// The failure search (an unreliable verdict, docs/falsify.md "False alarms"): one cross-entropy search
+// (with restarts) maximizing minus the final end's miss distance, a failed rollout scoring above every
+// distance and ending the search. Where the verifier named no place of failure every stable rollout scores
+// alike, and the search is a random one of extreme and uniform draws.
+void failure_search(const Context& c, std::vector<RolloutOutcome>* all, FalsifyResult* r) {
+  if (c.prediction.reliable || c.options.failure_budget <= 0) return;
+  constexpr double kFailed = 1;  // above every -distance
+  const BatchScore score = batch_score(c, "failure", all, r, [&](const Observed& o) {
+    if (o.failed) return kFailed;
+    if (o.unstable) return kNoScore;
+    const double d = miss_distance(c, o.final_end);
+    r->failure_closest = std::min(r->failure_closest, d);
+    return std::isfinite(d) ? -d : std::numeric_limits<double>::lowest();
+  });
+  const GenerationDone failed = [](const std::vector<CrossEntropyCandidate>& gen) {
+    return std::any_of(gen.begin(), gen.end(),
+                       [](const CrossEntropyCandidate& x) { return x.score >= kFailed; });
+  };
+  const CrossEntropyResult cem = cross_entropy_maximize(c.layout.size(), c.options.failure_budget,
+                                                        splitmix64(c.options.seed ^ 0x4661696c00000000ULL),
+                                                        c.options.search, score, failed, first_draw(c));
+  r->searches += cem.searches;
+  r->rollouts += cem.evaluations;
+  r->failure_rollouts = cem.evaluations;
+  r->failure_searched = true;
 }
 
 // The gap search's view of one motion's coverage: its lattice at the baseline's radius and each lattice
@@ -360,6 +418,7 @@ void gap_search(const Context& c, const std::vector<StepValidation>& radii,
     gap->rollouts = cem.evaluations;
     gap->closest = std::isfinite(cem.best.score) ? -cem.best.score : std::numeric_limits<double>::infinity();
     gap->reached = gap->closest <= radius;
+    gap->radius = radius;
     const std::span<const RolloutOutcome> added = std::span<const RolloutOutcome>(*all).subspan(first);
     add_ends(c, added, &steps);
     mark_reached(c, added, "gap", &r->pieces);
@@ -426,8 +485,13 @@ FalsifyResult falsify_with(std::shared_ptr<const LoadedTask> task, const Strateg
   if (baseline == nullptr) {
     if (options.random > 0)
       own = run_rollouts(c.scene, strategy, options.random, options.seed, r.options.threads);
-    for (const RolloutOutcome& ro : own) collect_findings(c, ro, observe(c, ro), "random", {}, &r);
+    for (const RolloutOutcome& ro : own) {
+      const Observed o = observe(c, ro);
+      collect_findings(c, ro, o, "random", {}, &r);
+      count_failure(c, ro, o, "random", {}, &r);
+    }
   } else {
+    for (const RolloutOutcome& ro : *baseline) count_failure(c, ro, observe(c, ro), "random", {}, &r);
     r.options.random = static_cast<int>(baseline->size());  // already scored by the caller: no findings
   }
   const std::vector<RolloutOutcome>& random = baseline == nullptr ? own : *baseline;
@@ -450,6 +514,10 @@ FalsifyResult falsify_with(std::shared_ptr<const LoadedTask> task, const Strateg
   r.coverage_before = before.coverage;
   r.coverage_radius = before.coverage_radius;
   r.coverage_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  failure_search(c, &searched, &r);
+  r.failure_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   gap_search(c, before.steps, random, &searched, &r);

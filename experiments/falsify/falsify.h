@@ -7,6 +7,9 @@
 //   - to cover: for each predicted termination piece that no random or falsification rollout ended in,
 //     minimize the distance of that motion's end from the piece; the pieces still unreached after the budget
 //     are listed (verifier looseness or a gap in the search, docs/falsify.md "Coverage");
+//   - to fail (under an unreliable verdict): minimize the distance of the final end from the predicted
+//     places where the strategy fails (the termination pieces outside the goal, a spring's free rest ball)
+//     until a rollout fails; none failing in any phase marks the verdict a false alarm candidate;
 //   - to fill coverage gaps: the coverage lattice point (validation.h coverage_lattice) farthest from every
 //     end of its motion is the target of a search that minimizes its motion's end's distance from it, until
 //     an end covers it (within the baseline's coverage radius) or its rollouts run out; then the next
@@ -16,8 +19,10 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +41,9 @@ struct FalsifyOptions {
   int random = 100;           // random rollouts first (the baseline coverage), sampled in `mode`
   int gap_budget = 0;         // gap search rollouts (0: none)
   int gap_rollouts = 96;      // at most this many per gap
+  // Failure search rollouts, run only under an unreliable verdict (0: none): a search for a rollout that
+  // fails, toward the predicted places where the strategy fails (docs/falsify.md "False alarms").
+  int failure_budget = 0;
   SampleMode mode = SampleMode::kExtreme;
   std::uint64_t seed = 1;
   int threads = 1;
@@ -46,7 +54,7 @@ struct FalsifyOptions {
 
 // One end found outside (or a failed rollout under a reliable verdict).
 struct FalsifyFinding {
-  std::string how;     // "falsify", "coverage", "gap" or "random"
+  std::string how;     // "falsify", "coverage", "failure", "gap" or "random"
   std::string motion;  // the motion whose end is outside ("" for a failure at the goal)
   int step = -1;       // its prediction step
   Vec3 end = Vec3::Zero();
@@ -74,14 +82,15 @@ struct CoverageGap {
   Vec3 point = Vec3::Zero();
   double gap = 0;        // its distance from the nearest end of its motion when it was chosen
   double closest = 0;    // the nearest end after its search
-  bool reached = false;  // an end of its search came within the coverage radius
+  bool reached = false;  // an end of its search came within `radius`
   int rollouts = 0;
+  double radius = 0;  // its motion's coverage radius (validation.h StepValidation::radius)
 };
 
 // A search rollout's end of a predicted motion (every phase but the random one): the report draws them per
 // motion beside the random ends (docs/falsify.md "In sweeps and the report").
 struct SearchEnd {
-  std::string how;  // "falsify", "coverage" or "gap"
+  std::string how;  // "falsify", "coverage", "failure" or "gap"
   int step = 0;     // the prediction step
   Vec3 end = Vec3::Zero();
   bool inside = false;  // within the contact tolerance of the step's predicted set
@@ -106,7 +115,20 @@ struct FalsifyResult {
   std::vector<PieceCoverage> pieces;
   std::vector<CoverageGap> gaps;       // in the order searched
   std::vector<SearchEnd> search_ends;  // in the order run (unstable rollouts have none)
+  // Stable rollouts that failed (did not end in the goal), every phase, the random or baseline ones
+  // included; the first found (phases in order: random, falsify, coverage, failure, gap) with its replay.
+  int failures = 0;
+  std::optional<FalsifyFinding> first_failure;
+  int failure_rollouts = 0;  // of the failure search
+  // The failure search's closest approach of a final end to the predicted places of failure (task units;
+  // infinite when the verifier named none, or the search did not run), and whether it ran.
+  double failure_closest = std::numeric_limits<double>::infinity();
+  bool failure_searched = false;
   double verify_seconds = 0, random_seconds = 0, search_seconds = 0, coverage_seconds = 0, gap_seconds = 0;
+  double failure_seconds = 0;
+  // Buckley's verdict against every rollout here: unreliable, yet no rollout failed (the failure search
+  // included when it ran).
+  bool false_alarm() const { return !prediction.reliable && failures == 0; }
 };
 
 // The verifier runs on the task's model for the controller form (make_verifier_model, as in run_validation).

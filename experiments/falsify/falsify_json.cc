@@ -66,12 +66,22 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
                     {"gap", g.gap},
                     {"closest_end", finite_or_null(g.closest)},
                     {"reached", g.reached},
+                    {"radius", g.radius},
                     {"rollouts", g.rollouts}});
   }
   nlohmann::json search_ends = nlohmann::json::array();
   for (const SearchEnd& e : r.search_ends)
     search_ends.push_back(
         {{"how", e.how}, {"step", e.step}, {"end", point_json(e.end, dim)}, {"inside", e.inside}});
+  nlohmann::json failure;  // null: none found
+  if (r.first_failure)
+    failure = {{"how", r.first_failure->how},
+               {"end", point_json(r.first_failure->end, dim)},
+               {"goal_distance", r.first_failure->distance},
+               {"errors", r.first_failure->errors.empty()
+                              ? nlohmann::json()
+                              : nlohmann::json(format_error_vector(r.first_failure->errors))},
+               {"replay", r.first_failure->replay}};
   return {{"task", r.task},
           {"strategy", r.strategy},
           {"reliable", r.prediction.reliable},
@@ -102,11 +112,19 @@ nlohmann::json falsify_json(const LoadedTask& task, const FalsifyResult& r) {
           {"gaps", gaps},
           {"gaps_reached", gaps_reached},
           {"search_ends", search_ends},
+          {"failure_budget", r.options.failure_budget},
+          {"failure_searched", r.failure_searched},
+          {"failure_rollouts", r.failure_rollouts},
+          {"failure_closest", finite_or_null(r.failure_closest)},
+          {"failures", r.failures},
+          {"first_failure", failure},
+          {"false_alarm", r.false_alarm()},
           {"verify_seconds", r.verify_seconds},
           {"random_seconds", r.random_seconds},
           {"search_seconds", r.search_seconds},
           {"coverage_seconds", r.coverage_seconds},
-          {"gap_seconds", r.gap_seconds}};
+          {"gap_seconds", r.gap_seconds},
+          {"failure_seconds", r.failure_seconds}};
 }
 
 }  // namespace cmt

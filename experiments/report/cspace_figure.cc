@@ -260,13 +260,14 @@ struct SearchPhase {
 const SearchPhase kSearchPhases[] = {
     {"falsify", "falsification search end", LegendMarker::kTriangle, rgb(0x0072b2)},
     {"coverage", "coverage search end", LegendMarker::kDiamond, rgb(0xcc79a7)},
+    {"failure", "failure search end", LegendMarker::kTriangle, rgb(0xd55e00)},
     {"gap", "gap search end", LegendMarker::kSquare, rgb(0x56b4e9)},
 };
 
 // Unreached pieces and gaps first (outlines under the ends), then the ends inside by phase, then the ends
 // outside as red crosses. Returns which legend rows apply: per phase, any outside, any unreached.
 struct SearchDrawn {
-  bool phase[3] = {false, false, false};
+  bool phase[std::size(kSearchPhases)] = {};
   bool outside = false, pieces = false, gaps = false;
 };
 SearchDrawn draw_search(PlotCanvas& canvas, const SearchLayer& search, const ViewSpec& s) {
@@ -279,9 +280,9 @@ SearchDrawn draw_search(PlotCanvas& canvas, const SearchLayer& search, const Vie
       canvas.polyline(pts, pts.size() >= 3, kInk, kUnreachedThickness);
     drawn.pieces = drawn.pieces || !pts.empty();
   }
-  for (const Vec3& g : search.unreached_gaps) {
-    canvas.circle(project(g, s), search.coverage_radius, kInk, false, 1);
-    canvas.dot(project(g, s), 2, kInk);
+  for (const SearchLayer::Gap& g : search.unreached_gaps) {
+    canvas.circle(project(g.point, s), g.radius, kInk, false, 1);
+    canvas.dot(project(g.point, s), 2, kInk);
     drawn.gaps = true;
   }
   for (std::size_t k = 0; k < std::size(kSearchPhases); ++k)
@@ -369,15 +370,15 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
         canvas.dot(project(r.end, s), kInsideDotRadius, darker(motion_color(r.motion, n)));
         any_inside = true;
       }
+  }
+  SearchDrawn search_drawn;
+  if (d.search) search_drawn = draw_search(canvas, *d.search, s);
+  if (d.rollouts)
     for (const RolloutRow& r : *d.rollouts)  // crosses last: the outliers must not be hidden
       if (!r.unstable && !r.inside) {
         canvas.cross(project(r.end, s), kOutsideCrossHalf, kOutsideRed, kOutsideCrossThickness);
         any_outside = true;
       }
-  }
-
-  SearchDrawn search_drawn;
-  if (d.search) search_drawn = draw_search(canvas, *d.search, s);
 
   canvas.add_legend({"C-space face", kFaceFill, LegendMarker::kFill});
   canvas.add_legend({"C-space face, back side", kBackFaceLine, LegendMarker::kOutline});

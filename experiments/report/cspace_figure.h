@@ -33,17 +33,20 @@ struct PlannedMotionLayer {
 
 // The adversarial search's layer of one motion's figure (`cmt falsify`, docs/falsify.md "In sweeps and the
 // report"): its rollouts' ends of that motion by phase, the predicted pieces no rollout ended in, and the
-// coverage gaps no search covered, each drawn with the coverage radius around it.
+// coverage gaps no search covered, each drawn with its motion's coverage radius around it.
 struct SearchLayer {
   struct End {
-    std::string how;  // "falsify", "coverage" or "gap"
+    std::string how;  // "falsify", "coverage", "failure" or "gap"
     Vec3 end = Vec3::Zero();
     bool inside = false;
   };
+  struct Gap {
+    Vec3 point = Vec3::Zero();
+    double radius = 0;
+  };
   std::vector<End> ends;
   std::vector<std::vector<Vec3>> unreached_pieces;  // polygon, segment ends or the vertex
-  std::vector<Vec3> unreached_gaps;
-  double coverage_radius = 0;
+  std::vector<Gap> unreached_gaps;
 };
 
 struct CSpaceFigureData {
@@ -59,8 +62,9 @@ struct CSpaceFigureData {
 // Color of motion i of n: the last motion (whose set is judged against the goal) is highlighted.
 cv::Scalar motion_color(int i, int n);
 
-// The view in which the pieces' projections cover the most area (the front view of a planar task; ties go
-// to the earlier of front, top, side): a one-motion figure shows its set where it is widest.
+// The view in which the pieces' projections cover the most area, then (without faces, or at equal area)
+// the most edge length (the front view of a planar task; ties go to the earlier of front, top, side): a
+// one-motion figure shows its set where it is widest.
 View widest_view(const Task& task, const std::vector<PredictedPiece>& pieces);
 
 // Draws one view, finished (axes, legend), ready to save.

@@ -19,6 +19,11 @@ int step_of(const nlohmann::json& item, const std::string& where) {
   return item["step"].get<int>();
 }
 
+const nlohmann::json& member(const nlohmann::json& item, const char* key, const std::string& where) {
+  if (!item.contains(key)) throw std::invalid_argument(where + "." + key + ": missing");
+  return item[key];
+}
+
 bool flag(const nlohmann::json& item, const char* key, const std::string& where) {
   if (!item.contains(key) || !item[key].is_boolean())
     throw std::invalid_argument(where + "." + key + ": expected true or false");
@@ -41,7 +46,12 @@ std::vector<FalsifyMotionFigure> falsify_motion_figures(const nlohmann::json& fa
     measured.insert(k);
     return &figures[static_cast<std::size_t>(k)];
   };
-  const double radius = falsify.value("coverage_radius", 0.0);
+  double radius = 0;  // a gap without its own radius (older results): the pooled one
+  if (falsify.contains("coverage_radius") && !falsify["coverage_radius"].is_null()) {
+    if (!falsify["coverage_radius"].is_number())
+      throw std::invalid_argument("coverage_radius: expected a number");
+    radius = falsify["coverage_radius"].get<double>();
+  }
   const nlohmann::json& pieces = array_at(falsify, "pieces");
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const std::string where = "pieces[" + std::to_string(i) + "]";
@@ -53,8 +63,14 @@ std::vector<FalsifyMotionFigure> falsify_motion_figures(const nlohmann::json& fa
   for (std::size_t i = 0; i < gaps.size(); ++i) {
     const std::string where = "gaps[" + std::to_string(i) + "]";
     FalsifyMotionFigure* f = figure_of(gaps[i], where);
-    if (f && !flag(gaps[i], "reached", where))
-      f->search.unreached_gaps.push_back(json_point(gaps[i]["point"], dim, where + ".point"));
+    if (!f || flag(gaps[i], "reached", where)) continue;
+    double gap_radius = radius;
+    if (gaps[i].contains("radius")) {
+      if (!gaps[i]["radius"].is_number()) throw std::invalid_argument(where + ".radius: expected a number");
+      gap_radius = gaps[i]["radius"].get<double>();
+    }
+    f->search.unreached_gaps.push_back(
+        {json_point(member(gaps[i], "point", where), dim, where + ".point"), gap_radius});
   }
   const nlohmann::json& ends = array_at(falsify, "search_ends");
   for (std::size_t i = 0; i < ends.size(); ++i) {
@@ -64,7 +80,7 @@ std::vector<FalsifyMotionFigure> falsify_motion_figures(const nlohmann::json& fa
     if (!ends[i].contains("how") || !ends[i]["how"].is_string())
       throw std::invalid_argument(where + ".how: expected a string");
     f->search.ends.push_back({ends[i]["how"].get<std::string>(),
-                              json_point(ends[i]["end"], dim, where + ".end"),
+                              json_point(member(ends[i], "end", where), dim, where + ".end"),
                               flag(ends[i], "inside", where)});
   }
   std::vector<FalsifyMotionFigure> out;
@@ -75,11 +91,10 @@ std::vector<FalsifyMotionFigure> falsify_motion_figures(const nlohmann::json& fa
     f.prediction.reliable = prediction.reliable;
     f.prediction.steps = {prediction.steps[static_cast<std::size_t>(k)]};
     for (const RolloutRow& r : rollouts)
-      if (r.motion == k) {
+      if (r.motion == k && r.termination != "none") {  // a time-out is no end (as the search's ends)
         f.random.push_back(r);
         f.random.back().motion = 0;
       }
-    f.search.coverage_radius = radius;
     f.view = widest_view(task, f.prediction.steps[0].termination);
     out.push_back(std::move(f));
   }

@@ -17,7 +17,7 @@ struct FalsifyMotionFigure {
   int step = 0;
   std::string motion;
   PredictedSets prediction;        // the motion's step alone
-  std::vector<RolloutRow> random;  // the random ends of the motion (motion renumbered 0)
+  std::vector<RolloutRow> random;  // the random ends of the motion, time-outs left out (motion renumbered 0)
   SearchLayer search;
   View view = View::kFront;  // widest_view of the motion's set
 };

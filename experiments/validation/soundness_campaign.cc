@@ -202,6 +202,24 @@ Generated generate(std::uint64_t seed, int index) {
 }
 
 // Validation of one task text in a forked child under the verifier budget; the child sends back the summary.
+// The validation's seed of task `index` (validate_text), which the false-alarm search uses too.
+std::uint64_t task_seed(const CampaignOptions& options, int index) {
+  return splitmix64(options.seed) ^ static_cast<std::uint64_t>(index);
+}
+
+// Saves a false-alarm candidate and, with the check set, searches it for a failing rollout.
+void check_false_alarm(const std::string& yaml, const CampaignOptions& options, int index,
+                       CampaignRecord* rec) {
+  rec->candidate = true;
+  std::filesystem::create_directories(options.out / "unreliable");
+  const std::filesystem::path file = options.out / "unreliable" / ("task-" + std::to_string(index) + ".yaml");
+  std::ofstream(file) << yaml;
+  rec->saved = file.string();
+  if (!options.false_alarm_check) return;
+  rec->check = options.false_alarm_check(file, task_seed(options, index));
+  rec->false_alarm = !rec->check.failure_found;
+}
+
 CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& options, int index) {
   CampaignRecord rec;
   rec.index = index;
@@ -217,7 +235,7 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
       run_forked_with_budget(options.verifier_budget, [&](const std::function<void()>& done) {
         ValidateOptions o;
         o.n = options.rollouts;
-        o.seed = splitmix64(options.seed) ^ static_cast<std::uint64_t>(index);
+        o.seed = task_seed(options, index);
         o.threads = options.threads;
         o.mode = SampleMode::kExtreme;
         o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
@@ -322,6 +340,9 @@ CampaignRecord record_from_json(const nlohmann::json& j) {
   r.replay = j.value("replay", "");
   r.outside = j.value("outside", 0);
   r.max_distance_outside = j.value("max_distance_outside", 0.0);
+  r.candidate = j.value("false_alarm_candidate", false);
+  if (j.contains("false_alarm") && j["false_alarm"].is_boolean())
+    r.false_alarm = j["false_alarm"].get<bool>();
   return r;
 }
 
@@ -345,7 +366,13 @@ nlohmann::json campaign_record_json(const CampaignRecord& r) {
           {"soundness_bug", r.soundness_bug},
           {"verify_seconds", r.verify_seconds},
           {"saved", r.saved},
-          {"replay", r.replay}};
+          {"replay", r.replay},
+          {"false_alarm_candidate", r.candidate},
+          {"false_alarm", r.false_alarm ? nlohmann::json(*r.false_alarm) : nlohmann::json()},
+          {"failure_rollouts", r.check.rollouts},
+          {"failure_closest",
+           std::isfinite(r.check.closest) ? nlohmann::json(r.check.closest) : nlohmann::json()},
+          {"failure_replay", r.check.replay}};
 }
 
 CampaignSummary run_soundness_campaign(const CampaignOptions& options,
@@ -371,6 +398,9 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
         Scene scene = g.scene;
         if (rec.status == "bug" && options.minimize)
           scene = minimize(scene, g.task.description, options, i, &rec);
+        if (rec.status == "sound" && !rec.reliable && rec.rollouts > rec.unstable &&
+            rec.successes == rec.rollouts - rec.unstable)
+          check_false_alarm(g.task.yaml, options, i, &rec);
         if (rec.status == "bug") {
           const std::filesystem::path file = options.out / "bugs" / ("task-" + std::to_string(i) + ".yaml");
           std::ofstream(file) << to_yaml(scene, i, g.task.description);
@@ -394,6 +424,8 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       sum.bug_records.push_back(rec);
     }
     if (rec.reliable) ++sum.reliable;
+    sum.candidates += rec.candidate;
+    if (rec.false_alarm) ++(*rec.false_alarm ? sum.false_alarms : sum.failures_found);
     if (progress) progress(rec);
   }
   return sum;

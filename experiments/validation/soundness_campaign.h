@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,14 @@ struct CampaignTask {
 // Task `index` of campaign `seed`: the same pair always gives the same text.
 CampaignTask generate_campaign_task(std::uint64_t seed, int index);
 
+// What the false-alarm check found for one task (CampaignOptions::false_alarm_check).
+struct FalseAlarmCheck {
+  bool failure_found = false;  // some search rollout failed: the "unreliable" verdict stands
+  int rollouts = 0;            // search rollouts run
+  double closest = std::numeric_limits<double>::infinity();  // closest final end to the predicted failure
+  std::string replay;                                        // the failing rollout's replay command
+};
+
 struct CampaignOptions {
   int tasks = 30;
   int first = 0;  // the first task index run (tasks [first, tasks))
@@ -35,7 +45,13 @@ struct CampaignOptions {
   int threads = 1;               // rollout threads (results are identical for every count)
   double verifier_budget = 120;  // s of wall clock per verification; a task over it is recorded, not scored
   bool minimize = true;          // shrink each bug before saving it
-  std::filesystem::path out = "out/soundness-campaign";  // results.jsonl, bugs/
+  std::filesystem::path out = "out/soundness-campaign";  // results.jsonl, bugs/, unreliable/
+  // The false-alarm check (docs/validation.md "False alarms"): a task verified unreliable whose stable
+  // rollouts all succeeded is saved as unreliable/task-<i>.yaml and, when this is set, searched for a
+  // failing rollout with the validation's seed. The adversarial search (experiments/falsify) depends on this
+  // library, so `cmt soundness-campaign` passes it in. Unset: the task is saved and counted, not searched.
+  std::function<FalseAlarmCheck(const std::filesystem::path& task_file, std::uint64_t seed)>
+      false_alarm_check;
 };
 
 // The outcome of one task.
@@ -48,12 +64,18 @@ struct CampaignRecord {
   double soundness = 1, max_distance_outside = 0, verify_seconds = 0;
   bool soundness_bug = false;  // verified reliable, a rollout failed
   std::string saved, replay;   // for bugs: the saved (minimized) task file and the command that replays it
+  // A false-alarm candidate (sound, unreliable, every stable rollout succeeded): saved under unreliable/;
+  // with the check, false_alarm says whether its search found no failure either.
+  bool candidate = false;
+  std::optional<bool> false_alarm;
+  FalseAlarmCheck check;
 };
 
 nlohmann::json campaign_record_json(const CampaignRecord& r);
 
 struct CampaignSummary {
   int run = 0, resumed = 0, sound = 0, bugs = 0, invalid = 0, timed_out = 0, reliable = 0;
+  int candidates = 0, false_alarms = 0, failures_found = 0;  // the false-alarm check's counts
   std::vector<CampaignRecord> bug_records;
 };
 

@@ -223,6 +223,55 @@ TEST(Falsify, GapSearchNamesThePartsOfThePredictionItCannotReach) {
   EXPECT_EQ(g.rollouts, 96);
 }
 
+// two_blocks `slide` with its goal cut at y = 1: the motion may end on the gap's foot edge beyond it (the
+// verifier's model predicts the whole edge), and random errors put the end there in about 1 rollout of 7.
+// The verdict is unreliable; the failure search (no random rollouts) must find a failing rollout, aiming at
+// the part of the edge outside the goal, and stop at the generation that holds it; its replay reproduces the
+// end. The task's own goal gives a reliable verdict, under which the failure search does not run.
+TEST(Falsify, FailureSearchFindsAFailureUnderAnUnreliableVerdict) {
+  std::ifstream in(builtin_path("two_blocks"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string goal = "polygon: [[-1.5, -4, 0], [1.5, -4, 0], [1.5, 4, 0], [-1.5, 4, 0]]";
+  const std::size_t at = yaml.find(goal);
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, goal.size(), "polygon: [[-1.5, -4, 0], [1.5, -4, 0], [1.5, 1, 0], [-1.5, 1, 0]]");
+  const auto cut = load_task_from_string(yaml, "two_blocks_cut");
+  FalsifyOptions o;
+  o.threads = 2;
+  o.seed = 4;
+  o.random = o.budget = o.coverage_budget = o.gap_budget = 0;
+  o.failure_budget = 96;
+  const FalsifyResult r = run_falsify(cut, "slide", o);
+  ASSERT_FALSE(r.prediction.reliable);
+  EXPECT_TRUE(r.failure_searched);
+  ASSERT_TRUE(r.first_failure.has_value());
+  EXPECT_EQ(r.first_failure->how, "failure");
+  EXPECT_GT(r.first_failure->end.y(), 1);
+  EXPECT_GE(r.failures, 1);
+  EXPECT_FALSE(r.false_alarm());
+  EXPECT_LT(r.failure_rollouts, o.failure_budget);  // stopped at the generation with the failure
+  EXPECT_EQ(r.failure_rollouts, r.rollouts);
+  EXPECT_LT(r.failure_closest, 0.01);  // some end came to the edge beyond the goal
+  // The failure replays from its vector alone.
+  const Strategy& strategy = cut->task.strategy_named("slide");
+  const ErrorVectorLayout layout(cut->task, strategy, r.shape);
+  ScriptedErrors errors(cut->task, layout, r.first_failure->errors);
+  SimOptions sim;
+  sim.form = o.form;
+  RolloutRunner runner(RolloutScene::build(cut, sim));
+  const RolloutOutcome replay = runner.run(strategy, errors, 0);
+  EXPECT_FALSE(replay.success);
+  EXPECT_EQ(replay.end, r.first_failure->end);
+
+  const FalsifyResult reliable = run_falsify(load_task(builtin_path("two_blocks")), "slide", o);
+  EXPECT_TRUE(reliable.prediction.reliable);
+  EXPECT_FALSE(reliable.failure_searched);
+  EXPECT_EQ(reliable.rollouts, 0);
+  EXPECT_FALSE(reliable.false_alarm());
+}
+
 TEST(Falsify, ResultsDoNotDependOnTheThreadCount) {
   const auto task = load_task(builtin_path("two_blocks"));
   const Strategy& strategy = task->task.strategy_named("slide");

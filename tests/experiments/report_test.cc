@@ -890,6 +890,9 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
             std::string::npos)
       << r.markdown;
 
+  // A search stored without `search_ends` still has its figure (the pieces and gaps).
+  EXPECT_EQ(figure(r, 1, "falsify_0")["kind"], "falsify_0");
+
   // Without search data (no falsify column, or NULL): no section.
   const cmt::report::ResultsDb db;
   cmt::report::ConfigRow plain;
@@ -930,12 +933,19 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
 // red cross, the unreached piece's outline and the unreached gap in ink; the random ends keep their dots.
 TEST(Report, AdversarialSearchFigureShowsEachPhaseAndWhatStayedUnreached) {
   const std::vector<double> falsify_end = {0.1, 0.1, -1}, gap_end = {-0.3, 0.05, -1},
-                            outside = {0.1, 0.8, -1};
+                            outside = {0.1, 0.8, -1}, coverage_end = {0.3, -0.35, -1},
+                            failure_end = {-0.1, -0.4, -1};
   json f = falsify_json_of_config1();
-  f["coverage_radius"] = 0.05;
+  f["coverage_radius"] = 0.3;  // the pooled radius; the gap has its own
+  f["gaps"][1]["radius"] = 0.1;
   f["pieces"][1]["points"] = {{1, -1, -1}, {1, 1, -1}};  // e3, unreached
+  json vertex = f["pieces"][1];
+  vertex["points"] = {{-1, 1, 1}};  // an unreached vertex at the top, seen from above
+  f["pieces"].push_back(vertex);
   f["search_ends"] = {{{"how", "falsify"}, {"step", 0}, {"end", falsify_end}, {"inside", true}},
                       {{"how", "gap"}, {"step", 0}, {"end", gap_end}, {"inside", true}},
+                      {{"how", "coverage"}, {"step", 0}, {"end", coverage_end}, {"inside", true}},
+                      {{"how", "failure"}, {"step", 0}, {"end", failure_end}, {"inside", true}},
                       {{"how", "coverage"}, {"step", 0}, {"end", outside}, {"inside", false}}};
   const Report r = make_report("falsify_figure", [&](const fs::path& db) {
     Db edit(db, false);
@@ -951,14 +961,35 @@ TEST(Report, AdversarialSearchFigureShowsEachPhaseAndWhatStayedUnreached) {
   const auto at = [&](const std::vector<double>& p) { return img.at<cv::Vec3b>(to_pixel(fig, p[0], p[1])); };
   EXPECT_EQ(at(falsify_end), legend_color(fig, "falsification search end"));
   EXPECT_EQ(at(gap_end), legend_color(fig, "gap search end"));
-  EXPECT_NE(legend_color(fig, "falsification search end"), legend_color(fig, "gap search end"));
+  EXPECT_EQ(at(coverage_end), legend_color(fig, "coverage search end"));
+  EXPECT_EQ(at(failure_end), legend_color(fig, "failure search end"));
+  std::set<int> distinct;  // packed colors
+  for (const char* phase : {"falsification", "coverage", "failure", "gap"}) {
+    const cv::Vec3b c = legend_color(fig, std::string(phase) + " search end");
+    distinct.insert(c[0] | c[1] << 8 | c[2] << 16);
+  }
+  EXPECT_EQ(distinct.size(), 4u);
   const cv::Vec3b red(0, 0, 255), ink(0, 0, 0);
   EXPECT_EQ(at(outside), red);
   EXPECT_EQ(at(kInsideEnds[0]), legend_color(fig, "random end in set"));
   EXPECT_NE(at(kInsideEnds[0]), red);
-  EXPECT_EQ(at({1, 0}), ink);        // the unreached edge's outline, midway (the start edge is at y = -1)
-  EXPECT_EQ(at({-0.9, 0.9}), ink);   // the unreached gap's centre
-  EXPECT_NE(at({-0.9, 0.75}), ink);  // 3 coverage radii from it: no ink
+  EXPECT_EQ(at({1, 0}), ink);       // the unreached edge's outline, midway (the start edge is at y = -1)
+  EXPECT_EQ(at({-0.9, 0.9}), ink);  // the unreached gap's centre
+  // Its ring has the gap's own radius, 0.1, not the pooled 0.3: ink near x = -0.8, none at -0.6 or -0.85.
+  const auto ink_near = [&](double x, double y) {
+    const cv::Point c = to_pixel(fig, x, y);
+    for (int dx = -2; dx <= 2; ++dx)
+      if (img.at<cv::Vec3b>(c + cv::Point(dx, 0)) == ink) return true;
+    return false;
+  };
+  EXPECT_TRUE(ink_near(-0.8, 0.9));
+  EXPECT_FALSE(ink_near(-0.6, 0.9));
+  EXPECT_FALSE(ink_near(-0.85, 0.9));
+  // The unreached vertex: a ring around it.
+  const cv::Point v = to_pixel(fig, -1, 1);
+  int ring = 0;
+  for (int dx = 7; dx <= 11; ++dx) ring += img.at<cv::Vec3b>(v + cv::Point(dx, 0)) == ink;
+  EXPECT_GT(ring, 0);
   EXPECT_EQ(legend_color(fig, "piece no rollout reached"), ink);
   EXPECT_EQ(legend_color(fig, "gap not covered"), ink);
   // Only config 1 has a search.
