@@ -337,12 +337,14 @@ class Projector {
       for (int g : edge.faces) {
         src.keep_front = {r_.charts[g].plane};
         // A segment or point on the rim's own faces is the rim itself (the prism's points at the rim), not a
-        // landing: coasting it would feed the rim a longer interval each round and creep along the edge. A
-        // landing with area on them (the command turning the robot back onto a face) is coasted.
+        // landing: coasting it would feed the rim a longer interval each round and creep along the edge. So
+        // is a sliver along the rim's line (the segment rounded outward to the region grid: every vertex
+        // within kRimLineRelativeTolerance of the line). A landing with area beyond it (the command turning
+        // the robot back onto a face) is coasted.
         std::vector<FlightHit> rim, landings;
         for (FlightHit& h : fly(r_, src, cone_)) {
           const bool own = std::find(edge.faces.begin(), edge.faces.end(), h.face) != edge.faces.end();
-          (own && h.region.is_empty() && on_edge_line(h, edge) ? rim : landings).push_back(std::move(h));
+          (own && on_edge_line(h, edge) ? rim : landings).push_back(std::move(h));
         }
         absorb(rim, edge.faces, sector);
         absorb(landings, {}, sector);
@@ -350,13 +352,20 @@ class Projector {
     }
   }
 
-  // Every point of a lower-dimensional hit lies on the edge's line (within kRimLineRelativeTolerance of the
-  // scene scale).
+  // Every point of the hit (its lower-dimensional points, and every vertex of its region's outer boundaries
+  // and holes) lies on the edge's line, within kRimLineRelativeTolerance of the scene scale.
   bool on_edge_line(const FlightHit& h, const Edge& edge) const {
     const Vec3 d = (edge.b - edge.a).normalized();
-    for (const Point2& p : h.lower) {
+    const auto near = [&](const Point2& p) {
       const Vec3 q = r_.charts[h.face].lift_double(p) - edge.a;
-      if ((q - q.dot(d) * d).norm() > kRimLineRelativeTolerance * c_.scale()) return false;
+      return (q - q.dot(d) * d).norm() <= kRimLineRelativeTolerance * c_.scale();
+    };
+    if (!std::all_of(h.lower.begin(), h.lower.end(), near)) return false;
+    for (const PolygonWithHoles2& p : h.region.polygons_with_holes()) {
+      if (!std::all_of(p.outer_boundary().vertices_begin(), p.outer_boundary().vertices_end(), near))
+        return false;
+      for (auto hole = p.holes_begin(); hole != p.holes_end(); ++hole)
+        if (!std::all_of(hole->vertices_begin(), hole->vertices_end(), near)) return false;
     }
     return true;
   }

@@ -343,5 +343,27 @@ TEST(ForwardProjection, ServoCoastCarriesAFlightPastARim) {
   EXPECT_GT(coasted.termination.distance(Vec3(1.5, 0, 0.95)), 0.005);
 }
 
+// A narrow slot (models/tasks/geometry/slot.yaml): blocks x <= -.05 and x >= .05, tops z = 0, floor z = -1,
+// mu = .3, theta_v = .08, v = (sin 60 deg, 0, -cos 60 deg) from (-1, 0, 0) on the left top. The robot slides
+// to the left rim along +x (y within tan(.08) of 0 per unit), leaves it descending at least tan(90 deg - 60
+// deg - .08 - .02) = .47 per unit, so crossing the .1 slot it drops over .04 in: far more than the contact
+// lift .0047 and the coast .0156 can make up. The rim coast's hits on the slot's own left wall are the rim
+// segment rounded to the region grid (a sliver on the rim's line), not landings: the rim must not creep
+// along y round after round (it did, to the whole edge, and the robot was predicted on the right block's
+// top). With lift and coast, nothing of the right top is reached, and the rim's reach stays near y = 0.
+TEST(ForwardProjection, RimCoastDoesNotCreepAlongTheRimOfASlot) {
+  const Compared r = project_both(
+      scene(0.3, 0.08,
+            "[{box: {min: [-3, -2, -1], max: [-0.05, 2, 0]}}, {box: {min: [0.05, -2, -1], max: [3, 2, 0]}}]",
+            "{min: [-3, -2, -1], max: [3, 2, 2]}", "[-1, 0, 0]", "[0.8660254037844386, 0, -0.5]"),
+      Vec3(0.8660254037844386, 0, -0.5), 0.0047, 0.0156);
+  for (const DamperProjection* p : {&r.plain, &r.modelled}) {
+    EXPECT_GT(p->reached.distance(Vec3(0.06, 0, 0)), 0.01);  // the right block's top, beside its rim
+    EXPECT_GT(p->reached.distance(Vec3(1, 0, 0)), 0.5);
+    EXPECT_GT(p->reached.distance(Vec3(-0.05, 0.5, 0)), 0.3);     // the left rim far from y = 0
+    EXPECT_LE(p->termination.distance(Vec3(0.05, 0, -1)), 1e-9);  // the slot's bottom right corner
+  }
+}
+
 }  // namespace
 }  // namespace cmt
