@@ -26,7 +26,9 @@ constexpr int kLiftStripRounds = 8;
 // flights from one face over one edge before they start from the whole edge (coast_over_rims).
 constexpr int kCoastRounds = 24;
 // A rim coast's hit on the rim's own faces within this fraction of the scene scale of the rim's line is the
-// rim itself (coast_over_rims): far above the flight sections' rounding pads (kFlightSectionRelativeError).
+// rim itself (coast_over_rims): far above the flight sections' rounding pads (kFlightSectionRelativeError)
+// and the region grid's outward rounding (a few cells of at most 2^-35 scale), far below any landing a
+// flight of nonzero cone width makes from in front of the face.
 constexpr double kRimLineRelativeTolerance = 1e-9;
 // Relative slack on the servo coast's length (covers rounding of the sector's double corners).
 constexpr double kCoastRelativeSlack = 1e-9;

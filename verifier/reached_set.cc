@@ -403,8 +403,44 @@ std::vector<ReachedPiece> ReachedSet::pieces() const {
 
 namespace {
 
-// Is the segment [a, b] (a == b: a point) within `tol` of the container (its closed face regions, edge
-// intervals, vertices)? Coverage is accumulated as parameter intervals on [0, 1].
+// The parameters s in [0, 1] of the points of [a, b] within tol of q, pushed onto `cover` (none when no point
+// is that close).
+void cover_near_point(const Vec3& a, const Vec3& b, const Vec3& q, double tol,
+                      std::vector<std::pair<double, double>>* cover) {
+  const Vec3 aq = a - q, d = b - a;
+  const double qa = d.squaredNorm();
+  if (qa == 0) {
+    if (aq.norm() <= tol) cover->push_back({0, 1});
+    return;
+  }
+  const double qb = d.dot(aq), qc = aq.squaredNorm() - tol * tol;
+  const double disc = qb * qb - qa * qc;
+  if (disc < 0) return;
+  const double root = std::sqrt(disc);
+  const double s0 = (-qb - root) / qa, s1 = (-qb + root) / qa;
+  if (s1 >= 0 && s0 <= 1) cover->push_back({std::max(0.0, s0), std::min(1.0, s1)});
+}
+
+// The part of [a, b] along the part [t0, t1] of segment [p, q] (both ends of [a, b] within tol of [p, q]),
+// pushed onto `cover`, as parameters on [0, 1] of [a, b].
+void cover_along(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, double t0, double t1, double tol,
+                 std::vector<std::pair<double, double>>* cover) {
+  if (distance_to_segment(a, p, q) > tol || distance_to_segment(b, p, q) > tol) return;
+  const Vec3 d = q - p;
+  const double l2 = d.squaredNorm();
+  if (l2 == 0) return cover_near_point(a, b, p, tol, cover);
+  const double ta = (a - p).dot(d) / l2, tb = (b - p).dot(d) / l2, slack = tol / std::sqrt(l2);
+  if (tb == ta) {
+    if (ta >= t0 - slack && ta <= t1 + slack) cover->push_back({0, 1});
+    return;
+  }
+  double s0 = (t0 - slack - ta) / (tb - ta), s1 = (t1 + slack - ta) / (tb - ta);
+  if (s0 > s1) std::swap(s0, s1);
+  if (s1 >= 0 && s0 <= 1) cover->push_back({std::max(0.0, s0), std::min(1.0, s1)});
+}
+
+// Is the segment [a, b] (a == b: a point) within `tol` of the container (its closed face regions, face
+// segments and points, edge intervals, vertices)? Coverage is accumulated as parameter intervals on [0, 1].
 bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, double tol) {
   const ReachedSet::Impl& im = container.impl();
   const CSpace& c = container.cspace();
@@ -442,42 +478,24 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
       if (ok && lo <= hi) cover.push_back({CGAL::to_double(lo), CGAL::to_double(hi)});
     }
   }
+  // A face's segments and points (a segment or point goal on a face, stored beside its regions) cover what
+  // lies within tol of them.
+  for (int fi = 0; fi < nf; ++fi) {
+    const fp::FaceSet& fs = im.faces[fi];
+    const fp::FaceChart& chart = im.charts[fi];
+    for (const fp::Segment2& seg : fs.segments)
+      cover_along(a, b, chart.lift_double(seg.source()), chart.lift_double(seg.target()), 0, 1, tol, &cover);
+    for (const Point2& q : fs.points) cover_near_point(a, b, chart.lift_double(q), tol, &cover);
+  }
   const int ne = static_cast<int>(c.edges().size());
   for (int ei = 0; ei < ne; ++ei) {
-    if (im.edges[ei].empty()) continue;
     const Edge& e = c.edges()[ei];
-    if (distance_to_segment(a, e.a, e.b) > tol || distance_to_segment(b, e.a, e.b) > tol) continue;
-    const Vec3 d = e.b - e.a;
-    const double el2 = d.squaredNorm();
-    const double ta = (a - e.a).dot(d) / el2, tb = (b - e.a).dot(d) / el2;
-    const double slack = tol / std::sqrt(el2);
-    for (const EdgeInterval& iv : im.edges[ei]) {
-      if (tb == ta) {
-        if (ta >= iv.t0 - slack && ta <= iv.t1 + slack) cover.push_back({0, 1});
-        continue;
-      }
-      double s0 = (iv.t0 - slack - ta) / (tb - ta), s1 = (iv.t1 + slack - ta) / (tb - ta);
-      if (s0 > s1) std::swap(s0, s1);
-      if (s1 >= 0 && s0 <= 1) cover.push_back({std::max(0.0, s0), std::min(1.0, s1)});
-    }
+    for (const EdgeInterval& iv : im.edges[ei]) cover_along(a, b, e.a, e.b, iv.t0, iv.t1, tol, &cover);
   }
   // A vertex covers the part of [a, b] within tol of it: the s in [0, 1] with |a + s (b − a) − v| <= tol (a
   // rounding sliver of an edge or face beside a goal vertex is contained, as the tolerance promises).
   for (std::size_t vi = 0; vi < im.vertices.size(); ++vi)
-    if (im.vertices[vi]) {
-      const Vec3 av = a - c.vertices()[vi].point;
-      if (len == 0) {
-        if (av.norm() <= tol) cover.push_back({0, 1});
-        continue;
-      }
-      const Vec3 d = b - a;
-      const double qa = d.squaredNorm(), qb = d.dot(av), qc = av.squaredNorm() - tol * tol;
-      const double disc = qb * qb - qa * qc;
-      if (disc < 0) continue;
-      const double root = std::sqrt(disc);
-      const double s0 = (-qb - root) / qa, s1 = (-qb + root) / qa;
-      if (s1 >= 0 && s0 <= 1) cover.push_back({std::max(0.0, s0), std::min(1.0, s1)});
-    }
+    if (im.vertices[vi]) cover_near_point(a, b, c.vertices()[vi].point, tol, &cover);
   std::sort(cover.begin(), cover.end());
   double reach = 0;
   const double gap = len > 0 ? tol / len : 0;

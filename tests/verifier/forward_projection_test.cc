@@ -345,12 +345,13 @@ TEST(ForwardProjection, ServoCoastCarriesAFlightPastARim) {
 
 // A narrow slot (models/tasks/geometry/slot.yaml): blocks x <= -.05 and x >= .05, tops z = 0, floor z = -1,
 // mu = .3, theta_v = .08, v = (sin 60 deg, 0, -cos 60 deg) from (-1, 0, 0) on the left top. The robot slides
-// to the left rim along +x (y within tan(.08) of 0 per unit), leaves it descending at least tan(90 deg - 60
-// deg - .08 - .02) = .47 per unit, so crossing the .1 slot it drops over .04 in: far more than the contact
-// lift .0047 and the coast .0156 can make up. The rim coast's hits on the slot's own left wall are the rim
-// segment rounded to the region grid (a sliver on the rim's line), not landings: the rim must not creep
-// along y round after round (it did, to the whole edge, and the robot was predicted on the right block's
-// top). With lift and coast, nothing of the right top is reached, and the rim's reach stays near y = 0.
+// to the left rim along +x near y = 0 and leaves it descending at least tan(30 deg - .0807) = .4747 per unit
+// (.0807: the 24 circumscribing rays' widest angle). First order it meets the right wall at most at z = -.1 x
+// .4747 = -.0475. With lift .0047 and coast .0156 (the prism reaches at most .0157 past the rim) at most at
+// z = .0047 - (.1 - .0157) x .4747 = -.0353: the right block's top (z = 0) stays out of reach. The rim
+// coast's hits on the slot's own left wall are the rim segment rounded to the region grid (a sliver on the
+// rim's line), not landings, so the rim's reach stays near y = 0 rather than creeping along the rim round
+// after round. The coast itself still applies: the right wall is reached at z = -.04 with it and not without.
 TEST(ForwardProjection, RimCoastDoesNotCreepAlongTheRimOfASlot) {
   const Compared r = project_both(
       scene(0.3, 0.08,
@@ -363,6 +364,8 @@ TEST(ForwardProjection, RimCoastDoesNotCreepAlongTheRimOfASlot) {
     EXPECT_GT(p->reached.distance(Vec3(-0.05, 0.5, 0)), 0.3);     // the left rim far from y = 0
     EXPECT_LE(p->termination.distance(Vec3(0.05, 0, -1)), 1e-9);  // the slot's bottom right corner
   }
+  EXPECT_LE(r.modelled.reached.distance(Vec3(0.05, 0, -0.04)), 1e-9);
+  EXPECT_GT(r.plain.reached.distance(Vec3(0.05, 0, -0.04)), 0.005);
 }
 
 }  // namespace

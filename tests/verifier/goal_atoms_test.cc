@@ -50,5 +50,22 @@ TEST(GoalAtoms, AMissedCornerIsStillUnreliable) {
   EXPECT_FALSE(r.reliable);
 }
 
+// A goal point or segment inside a face is stored beside the face's regions (as its points and segments),
+// and a termination piece there is contained when it lies within the tolerance of them. A damper straight
+// down onto the floor (mu .3 > theta_v .1) must stick where it starts: the termination set is the start
+// point, which is the goal point (the random-task campaign's task 1142 of seed 3: a point goal on a box top,
+// verified unreliable while it must stick). A segment goal through the start holds it too; a goal point
+// .01 away does not.
+TEST(GoalAtoms, APointOrSegmentGoalInsideAFaceHoldsAStopThere) {
+  for (const std::string goal :
+       {"{point: [2, 2, 0]}", "{segment: [[1, 2, 0], [3, 2, 0]]}", "{segment: [[2, 2, 0], [2, 3, 0]]}"}) {
+    const VerifyResult r = verify_motions(*room_task(0.3, goal, "[0, 0, -1]"), {"m"});
+    EXPECT_TRUE(r.reliable) << goal << ": " << r.failure;
+  }
+  EXPECT_FALSE(verify_motions(*room_task(0.3, "{point: [2.01, 2, 0]}", "[0, 0, -1]"), {"m"}).reliable);
+  EXPECT_FALSE(verify_motions(*room_task(0.3, "{segment: [[1, 2.01, 0], [3, 2.01, 0]]}", "[0, 0, -1]"), {"m"})
+                   .reliable);
+}
+
 }  // namespace
 }  // namespace cmt
