@@ -6,11 +6,15 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "controllers/random.h"
 #include "experiments/validation/soundness_campaign.h"
 #include "experiments/validation/validation.h"
+#include "models/loaded_task.h"
 
 namespace cmt {
 namespace {
@@ -157,7 +161,10 @@ TEST(SoundnessCampaign, TasksAreSeededAndLoad) {
   EXPECT_NE(generate_campaign_task(7, 0).yaml, generate_campaign_task(8, 0).yaml);
 }
 
-// The bounded campaign CI runs: 30 generated tasks, 60 extreme rollouts each, no soundness bug.
+// The bounded campaign CI runs: 30 generated tasks, 60 extreme rollouts each, no soundness bug. The
+// false-alarm check is a stand-in here (cmt soundness-campaign passes cmt falsify's failure search): it must
+// be asked exactly about the tasks verified unreliable whose stable rollouts all succeeded, each saved as
+// unreliable/task-<i>.yaml, with the task's validation seed; its answer lands in the record and the counts.
 TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
   CampaignOptions o;
   o.tasks = 30;
@@ -167,10 +174,39 @@ TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
   o.verifier_budget = 120;
   o.out = std::filesystem::temp_directory_path() / ("cmt-campaign-test-" + std::to_string(::getpid()));
   std::filesystem::remove_all(o.out);
-  const CampaignSummary s = run_soundness_campaign(o);
+  std::map<std::string, std::uint64_t> asked;  // saved task file -> seed
+  o.false_alarm_check = [&](const std::filesystem::path& file, std::uint64_t seed) {
+    asked[file.string()] = seed;
+    FalseAlarmCheck check;
+    check.failure_found = asked.size() % 2 == 0;  // every other one "finds" a failure
+    check.rollouts = 7;
+    return check;
+  };
+  std::vector<CampaignRecord> records;
+  const CampaignSummary s = run_soundness_campaign(o, [&](const CampaignRecord& r) { records.push_back(r); });
   EXPECT_EQ(s.run, 30);
   EXPECT_EQ(s.bugs, 0) << "first bug: " << (s.bug_records.empty() ? "" : s.bug_records.front().replay);
   EXPECT_GE(s.sound, 25);  // at most a few invalid or timed-out draws
+  int candidates = 0;
+  for (const CampaignRecord& r : records) {
+    const bool candidate = r.status == "sound" && !r.reliable && r.rollouts > r.unstable &&
+                           r.successes == r.rollouts - r.unstable;
+    EXPECT_EQ(r.candidate, candidate) << r.index;
+    EXPECT_EQ(r.false_alarm.has_value(), candidate) << r.index;
+    if (!candidate) continue;
+    ++candidates;
+    const std::filesystem::path file = o.out / "unreliable" / ("task-" + std::to_string(r.index) + ".yaml");
+    EXPECT_EQ(r.saved, file.string());
+    ASSERT_EQ(asked.count(file.string()), 1u) << r.index;
+    EXPECT_EQ(asked[file.string()], splitmix64(o.seed) ^ static_cast<std::uint64_t>(r.index));
+    EXPECT_EQ(load_task(file)->task.strategy_named("s").motions.size(), 1u);
+    EXPECT_EQ(r.check.rollouts, 7);
+  }
+  EXPECT_GE(candidates, 1);
+  EXPECT_EQ(static_cast<int>(asked.size()), candidates);
+  EXPECT_EQ(s.candidates, candidates);
+  EXPECT_EQ(s.false_alarms + s.failures_found, candidates);
+  EXPECT_EQ(s.failures_found, candidates / 2);
 
   // Resumed: the range's tasks are read back, none is run again.
   CampaignOptions tail = o;
@@ -178,6 +214,10 @@ TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
   const CampaignSummary resumed = run_soundness_campaign(tail);
   EXPECT_EQ(resumed.run, 2);
   EXPECT_EQ(resumed.resumed, 2);
+  EXPECT_EQ(asked.size(), static_cast<std::size_t>(candidates));  // read back, not checked again
+  EXPECT_EQ(resumed.candidates, records[28].candidate + records[29].candidate);
+  EXPECT_EQ(resumed.false_alarms, (records[28].false_alarm && *records[28].false_alarm) +
+                                      (records[29].false_alarm && *records[29].false_alarm));
 
   // In a new folder, --first 29 runs task 29 alone, with the same outcome as in the whole campaign.
   CampaignOptions last = tail;
