@@ -386,8 +386,9 @@ PlotCanvas draw_cspace_view(const CSpaceFigureData& d, View view, const FigureSi
   canvas.add_legend({"start region", kStartColor, LegendMarker::kLine});
   if (d.prediction)  // n is its number of steps when it has any
     for (int i = 0; i < static_cast<int>(d.prediction->steps.size()); ++i) {
-      canvas.add_legend({"predicted end, " + motions[i] + (i == n - 1 ? " (last)" : ""), motion_color(i, n),
-                         LegendMarker::kFill});
+      // A one-motion figure of a search shows one step of the strategy, not necessarily its last.
+      canvas.add_legend({"predicted end, " + motions[i] + (i == n - 1 && !d.search ? " (last)" : ""),
+                         motion_color(i, n), LegendMarker::kFill});
       const auto& pieces = d.prediction->steps[i].termination;
       if (std::any_of(pieces.begin(), pieces.end(),
                       [](const PredictedPiece& p) { return p.kind != "free" && p.polygon.size() <= 2; }))
