@@ -269,8 +269,8 @@ TEST_F(SweepCli, FalsifySearchRunsAfterTheValidationAndReachesTheReport) {
   EXPECT_EQ(fa["search_ends"].size(), fa["rollouts"].get<std::size_t>() - fa["unstable"].get<std::size_t>());
   for (const auto& e : fa["search_ends"])
     EXPECT_TRUE(e["how"] == "falsify" || e["how"] == "coverage" || e["how"] == "gap");
-  for (const char* timing :
-       {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds", "gap_seconds"}) {
+  for (const char* timing : {"verify_seconds", "random_seconds", "search_seconds", "coverage_seconds",
+                             "gap_seconds", "failure_seconds"}) {
     fa.erase(timing);
     fb.erase(timing);
   }
