@@ -118,22 +118,26 @@ FirstDraw first_draw(const Context& c) {
   return [&c](Rng& rng) { return extreme_or_uniform(c.layout, c.task.task, rng); };
 }
 
+// The command that replays a rollout: by its error vector, or by seed and index for a random one.
+std::string replay_of(const Context& c, const RolloutOutcome& ro, const std::vector<double>& errors) {
+  return errors.empty() ? replay_command(c.task, c.strategy.name, c.options.seed, ro.index, c.options.mode,
+                                         c.options.form)
+                        : error_replay_command(c.task, c.strategy.name, errors, c.options.form);
+}
+
 // Records the ends outside (and, under a reliable verdict, a failed rollout) as findings.
 void collect_findings(const Context& c, const RolloutOutcome& ro, const Observed& o, const std::string& how,
                       const std::vector<double>& errors, FalsifyResult* r) {
-  const auto replay = [&] {
-    return errors.empty() ? replay_command(c.task, c.strategy.name, c.options.seed, ro.index, c.options.mode,
-                                           c.options.form)
-                          : error_replay_command(c.task, c.strategy.name, errors, c.options.form);
-  };
   for (const ObservedEnd& e : o.ends)
     if (!e.inside) {
       ++r->outside;
-      r->findings.push_back({how, e.motion_name, e.motion, e.end, e.distance, errors, replay()});
+      r->findings.push_back(
+          {how, e.motion_name, e.motion, e.end, e.distance, errors, replay_of(c, ro, errors)});
     }
   if (c.prediction.reliable && o.failed &&
       std::all_of(o.ends.begin(), o.ends.end(), [](const ObservedEnd& e) { return e.inside; }))
-    r->findings.push_back({how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay()});
+    r->findings.push_back(
+        {how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay_of(c, ro, errors)});
 }
 
 // Counts a stable failed rollout and keeps the first as the failure found.
@@ -141,12 +145,9 @@ void count_failure(const Context& c, const RolloutOutcome& ro, const Observed& o
                    const std::vector<double>& errors, FalsifyResult* r) {
   if (!o.failed) return;
   ++r->failures;
-  if (r->first_failure) return;
-  const std::string replay =
-      errors.empty()
-          ? replay_command(c.task, c.strategy.name, c.options.seed, ro.index, c.options.mode, c.options.form)
-          : error_replay_command(c.task, c.strategy.name, errors, c.options.form);
-  r->first_failure = FalsifyFinding{how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay};
+  if (!r->first_failure)
+    r->first_failure =
+        FalsifyFinding{how, "", -1, ro.end, c.scene->goal_distance(ro.end), errors, replay_of(c, ro, errors)};
 }
 
 // The falsification score of a rollout: its ends' largest signed distance.
@@ -274,21 +275,6 @@ void coverage_search(const Context& c, std::vector<RolloutOutcome>* all, Falsify
   }
 }
 
-// Distance of a final end from where the verifier says the strategy fails: the offending termination
-// pieces and a spring's free rest ball (as `cmt validate`'s counterexample search measures it); infinite
-// when it named no place (a motion that may slide forever, or fail to terminate).
-double miss_distance(const Context& c, const Vec3& end) {
-  double d = std::numeric_limits<double>::infinity();
-  for (const ReachedPiece& p : c.prediction.outside_goal)
-    d = std::min(d, distance_to_piece(c.task.cspace, p, end));
-  const int fs = c.prediction.failed_step;
-  if (fs >= 0 && c.prediction.steps[static_cast<std::size_t>(fs)].free_termination) {
-    const VerifyStep& s = c.prediction.steps[static_cast<std::size_t>(fs)];
-    d = std::min(d, std::max(0.0, (end - s.free_center).norm() - s.free_radius));
-  }
-  return d;
-}
-
 // The failure search (an unreliable verdict, docs/falsify.md "False alarms"): one cross-entropy search
 // (with restarts) maximizing minus the final end's miss distance, a failed rollout scoring above every
 // distance and ending the search. Where the verifier named no place of failure every stable rollout scores
@@ -299,7 +285,7 @@ void failure_search(const Context& c, std::vector<RolloutOutcome>* all, FalsifyR
   const BatchScore score = batch_score(c, "failure", all, r, [&](const Observed& o) {
     if (o.failed) return kFailed;
     if (o.unstable) return kNoScore;
-    const double d = miss_distance(c, o.final_end);
+    const double d = distance_to_failure(c.task.cspace, c.prediction, o.final_end);
     r->failure_closest = std::min(r->failure_closest, d);
     return std::isfinite(d) ? -d : std::numeric_limits<double>::lowest();
   });

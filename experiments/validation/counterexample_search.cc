@@ -61,18 +61,8 @@ class Search {
         prediction_(prediction),
         tolerance_(tolerance) {}
 
-  // Distance of a rollout's final end to where the strategy fails: the offending termination pieces and a
-  // spring's free rest ball; +infinity when the verifier named no such place (an earlier step failed).
   double miss_distance(const RolloutOutcome& r) const {
-    double d = std::numeric_limits<double>::infinity();
-    for (const ReachedPiece& p : prediction_.outside_goal)
-      d = std::min(d, distance_to_piece(task_->cspace, p, r.end));
-    const int fs = prediction_.failed_step;
-    if (fs >= 0 && prediction_.steps[fs].free_termination) {
-      const VerifyStep& s = prediction_.steps[fs];
-      d = std::min(d, std::max(0.0, (r.end - s.free_center).norm() - s.free_radius));
-    }
-    return d;
+    return distance_to_failure(task_->cspace, prediction_, r.end);
   }
 
   // Runs the candidates (at most kSearchBatch) in parallel and scores them; true when one failed.

@@ -93,4 +93,15 @@ std::vector<Vec3> region_lattice(const CSpace& c, const ReachedPiece& piece, dou
   return out;
 }
 
+double distance_to_failure(const CSpace& cspace, const VerifyResult& prediction, const Vec3& end) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const ReachedPiece& p : prediction.outside_goal) d = std::min(d, distance_to_piece(cspace, p, end));
+  const int fs = prediction.failed_step;
+  if (fs >= 0 && prediction.steps[static_cast<std::size_t>(fs)].free_termination) {
+    const VerifyStep& s = prediction.steps[static_cast<std::size_t>(fs)];
+    d = std::min(d, std::max(0.0, (end - s.free_center).norm() - s.free_radius));
+  }
+  return d;
+}
+
 }  // namespace cmt
