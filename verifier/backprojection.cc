@@ -204,27 +204,7 @@ ReachedSet termination_base(const LoadedTask& task, const AtomCones& cones, cons
   ReachedSet stops(c);
   for (int id = 0; id < c.atom_count(); ++id)
     if (classify_damper(cones, id, v, theta_v, stop_angle) != StickClass::kNever) stops.add_whole_atom(id);
-  const ReachedSet::Impl& x = target.impl();
-  ReachedSet::Impl& b = stops.impl();
-  for (std::size_t fi = 0; fi < b.faces.size(); ++fi)
-    if (!b.faces[fi].region.is_empty() && !x.faces[fi].region.is_empty())
-      b.faces[fi].region.difference(x.faces[fi].region);
-  for (std::size_t ei = 0; ei < b.edges.size(); ++ei) {
-    std::vector<EdgeInterval> rest;
-    for (const EdgeInterval& iv : b.edges[ei]) {
-      double t = iv.t0;
-      for (const EdgeInterval& hole : x.edges[ei]) {
-        if (hole.t1 < t || hole.t0 > iv.t1) continue;
-        if (hole.t0 > t) rest.push_back({t, hole.t0});
-        t = std::max(t, hole.t1);
-      }
-      if (t < iv.t1) rest.push_back({t, iv.t1});
-    }
-    b.edges[ei] = rest;
-  }
-  for (std::size_t vi = 0; vi < b.vertices.size(); ++vi)
-    if (x.vertices[vi]) b.vertices[vi] = 0;
-  return stops;
+  return points_outside(stops, target);
 }
 
 Points2 grown_hull(const std::vector<Point2>& pts, double margin) {
@@ -254,6 +234,31 @@ DamperBackprojection backproject_damper(const LoadedTask& task, const AtomCones&
   out.strong =
       surface_complement(out.weak, std::max(margin, kBackprojectionRelativeMargin * task.cspace.scale()));
   return out;
+}
+
+ReachedSet points_outside(const ReachedSet& set, const ReachedSet& target) {
+  ReachedSet stops = set;
+  const ReachedSet::Impl& x = target.impl();
+  ReachedSet::Impl& b = stops.impl();
+  for (std::size_t fi = 0; fi < b.faces.size(); ++fi)
+    if (!b.faces[fi].region.is_empty() && !x.faces[fi].region.is_empty())
+      b.faces[fi].region.difference(x.faces[fi].region);
+  for (std::size_t ei = 0; ei < b.edges.size(); ++ei) {
+    std::vector<EdgeInterval> rest;
+    for (const EdgeInterval& iv : b.edges[ei]) {
+      double t = iv.t0;
+      for (const EdgeInterval& hole : x.edges[ei]) {
+        if (hole.t1 < t || hole.t0 > iv.t1) continue;
+        if (hole.t0 > t) rest.push_back({t, hole.t0});
+        t = std::max(t, hole.t1);
+      }
+      if (t < iv.t1) rest.push_back({t, iv.t1});
+    }
+    b.edges[ei] = rest;
+  }
+  for (std::size_t vi = 0; vi < b.vertices.size(); ++vi)
+    if (x.vertices[vi]) b.vertices[vi] = 0;
+  return stops;
 }
 
 ReachedSet surface_complement(const ReachedSet& set, double margin) {

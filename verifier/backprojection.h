@@ -8,6 +8,7 @@
 #include "models/loaded_task.h"
 #include "verifier/atom_cone.h"
 #include "verifier/reached_set.h"
+#include "verifier/spring_projection.h"
 
 namespace cmt {
 
@@ -56,6 +57,43 @@ struct DamperBackprojection {
 DamperBackprojection backproject_damper(const LoadedTask& task, const AtomCones& cones,
                                         const ReachedSet& target, const Vec3& v,
                                         double stop_relative_speed = 0, double margin = 0);
+
+// Weak and strong backprojections of one generalized-spring motion commanded to p (Buckley §5.4.4, Alg 5.2)
+// under the via-point model (App. B, SpringModel::kViaPoint: the model of the position form), reversing the
+// forward projection's pointwise relations (spring_projection.h). With r = eps_t + eps_o, a path from x
+// toward p stays within r of seg[x, p] (the eps_t cylinder about the segment to p + eps_o u):
+//  - straight lines (Figs 5.15-5.17): x may reach a part P when seg[x, p] meets P ⊕ cube(r), the set
+//    K + cone(K − p) of contact points behind K as seen from p (K = P ⊕ cube(r)); face points only where the
+//    robot may leave the face (outside its no-leave disk about p', as forward_project_spring); occlusion is
+//    not subtracted (spring paths bend: sound, looser, as the forward flight);
+//  - backsliding on a face F (Fig 5.18): points of F whose slide toward p'_F (the projection of p on F's
+//    plane) passes within r of P, on faces where the robot may stay; guaranteed sticking on the way is not
+//    subtracted (sound, looser);
+//  - along an edge: points whose slide toward q (the projection of p on the edge's line, either way within
+//    the forward projection's half-width about q) crosses P;
+//  - closure: a face part's boundary on the face's edges and vertices.
+// Falls back to every atom (sound) after kMaxBackprojectionSteps work items.
+WeakBackprojection weak_backproject_spring(const LoadedTask& task, const ReachedSet& from, const Vec3& p);
+
+// S_p(X) = the surface less W_p(B) grown by the margin (as backproject_damper), B = the points outside X
+// where the motion may stop: the termination of the via-point forward projection from the whole surface, and
+// the whole of each face or edge where it may slide forever. When the robot may come to rest in free space
+// (the rest ball about p meets free space), every path may end there (all of them end near p): W is the whole
+// surface and S is empty.
+struct SpringBackprojection {
+  ReachedSet base;         // B
+  ReachedSet weak;         // W_p(B)
+  ReachedSet strong;       // S_p(X)
+  bool free_rest = false;  // B holds the free-space rest ball about p
+  bool fallback = false;
+  int steps = 0;
+};
+SpringBackprojection backproject_spring(const LoadedTask& task, const ReachedSet& target, const Vec3& p,
+                                        double margin = 0);
+
+// The points of `set` not in `target`: face regions by their difference on the grid, edge intervals cut,
+// vertices dropped (segments and points on faces are kept: a superset).
+ReachedSet points_outside(const ReachedSet& set, const ReachedSet& target);
 
 // The closed complement of `set` on the C-space surface, kept `margin` (task units) away from it: whole faces
 // less the set's face parts and its edge and vertex points grown by margin, whole edges less its intervals

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace cmt::fp {
@@ -292,6 +293,44 @@ Points2 spring_strip(const ReachedSet::Impl& g, int fi, const Points2& part, con
   Points2 hull = convex_hull(pts);
   if (hull.empty()) hull = {pts[0]};
   return clip(hull, g.face_polygon[fi]);
+}
+
+double edge_either_way_halfwidth(const Edge& e, const Vec3& p, const Uncertainty& u, double overshoot) {
+  const Vec3 d = e.b - e.a;
+  const Vec3 q = e.a + (p - e.a).dot(d) / d.squaredNorm() * d;
+  const double perp = (p - q).norm(), sv = std::sin(u.theta_v);
+  if (sv >= 1) return std::numeric_limits<double>::infinity();
+  auto f = [&](double s) { return s - u.eps_s - sv * (std::hypot(perp, s) + u.eps_s); };
+  double lo = 0, hi = 1;
+  while (f(hi) <= 0) hi *= 2;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) <= 0 ? lo : hi) = mid;
+  }
+  return std::max(hi, overshoot) * (1 + kSpringRelativeSlack);
+}
+
+double edge_must_leave_halfwidth(const CSpace& cspace, const Edge& e, double tp, const Vec3& p,
+                                 const Uncertainty& u, double margin) {
+  if (e.shape == EdgeShape::kNonManifold) return 0;
+  const double sv = std::sin(u.theta_v);
+  double radius = 0;
+  for (int f : e.faces) {
+    const Face& face = cspace.faces()[f];
+    const double pull_away = -(face.offset - face.normal.dot(p)) - u.eps_s - margin;
+    double r_f;
+    if (pull_away <= 0)
+      r_f = 0;
+    else if (sv <= 0)
+      r_f = std::numeric_limits<double>::infinity();
+    else
+      r_f = std::max(0.0, pull_away / sv - u.eps_s);
+    radius = std::max(radius, r_f);
+  }
+  if (std::isinf(radius)) return radius;
+  const double perp = (p - (e.a + tp * (e.b - e.a))).norm();
+  if (radius <= perp) return 0;
+  return std::sqrt(radius * radius - perp * perp) / (e.b - e.a).norm() - kEdgeParamSlack;
 }
 
 }  // namespace cmt::fp

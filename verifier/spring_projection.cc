@@ -532,51 +532,17 @@ class SpringProjector {
   // The edge's parameter interval about the projection q of p where motion along the edge may go either way
   // (|x − q| = s with s − eps_s <= sin(theta_v) (|p − x| + eps_s)), or the overshoot eps_o if larger.
   double edge_halfwidth(const Edge& e) const {
-    const Vec3 d = e.b - e.a;
-    const Vec3 q = e.a + (p_ - e.a).dot(d) / d.squaredNorm() * d;
-    const double perp = (p_ - q).norm(), sv = std::sin(u_.theta_v);
-    if (sv >= 1) return std::numeric_limits<double>::infinity();
-    auto f = [&](double s) { return s - u_.eps_s - sv * (std::hypot(perp, s) + u_.eps_s); };
-    double lo = 0, hi = 1;
-    while (f(hi) <= 0) hi *= 2;
-    for (int i = 0; i < 100; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (f(mid) <= 0 ? lo : hi) = mid;
-    }
     // The via-point model may overshoot q by eps_o; the velocity forms do not overshoot p*.
-    return std::max(hi, model_ == SpringModel::kVelocity ? 0.0 : eps_o_) * (1 + kSpringRelativeSlack);
+    return edge_either_way_halfwidth(e, p_, u_, model_ == SpringModel::kVelocity ? 0.0 : eps_o_);
   }
 
   // Staying on an edge (Buckley §3.3.2 applied to edge contact): the robot keeps an edge contact only while
-  // it may push into every face that meets there. Pulling away from one face moves it off the edge line:
-  // into free space at a convex edge, along the other face (a may-enter entry) at a concave one. The pull
-  // p − x̂ surely points away from face f, beyond theta_v, when its part along f's normal exceeds
-  // sin(theta_v) |p − x̂| for every sensed x̂: (−depth_f − eps_s) > sin(theta_v) (|p − x| + eps_s), i.e. within
-  // distance R_f = (−depth_f − eps_s) / sin(theta_v) − eps_s of p. On the edge line |p − x|^2 = perp^2 + (len
-  // (t − tp))^2, so the points where the robot must leave form the open parameter interval (tp − a, tp + a),
-  // a = sqrt(R^2 − perp^2) / len, R = max_f R_f; non-manifold edges: none. Returns a, shrunk by the decision
-  // margin (favours staying): 0 when there is no such interval, infinity when the robot must leave
-  // everywhere.
-  double edge_leave_halfwidth(const Edge& e, double tp, double len) const {
-    if (e.shape == EdgeShape::kNonManifold) return 0;
-    const double sv = std::sin(u_.theta_v), margin = kDecisionMargin * c_.scale();
-    double radius = 0;
-    for (int f : e.faces) {
-      const double pull_away = -depth_[f] - u_.eps_s - margin;
-      double r_f;
-      if (pull_away <= 0)
-        r_f = 0;
-      else if (sv <= 0)
-        r_f = std::numeric_limits<double>::infinity();
-      else
-        r_f = std::max(0.0, pull_away / sv - u_.eps_s);
-      radius = std::max(radius, r_f);
-    }
-    if (std::isinf(radius)) return radius;
-    const Vec3 q = e.a + tp * (e.b - e.a);
-    const double perp = (p_ - q).norm();
-    if (radius <= perp) return 0;
-    return std::sqrt(radius * radius - perp * perp) / len - kEdgeParamSlack;
+  // it may push into every face that meets there; pulling away from one face moves it off the edge line, into
+  // free space at a convex edge, along the other face (a may-enter entry) at a concave one. The half-width of
+  // the parameter interval about tp where it must leave (edge_must_leave_halfwidth), shrunk by the decision
+  // margin (favours staying).
+  double edge_leave_halfwidth(const Edge& e, double tp) const {
+    return edge_must_leave_halfwidth(c_, e, tp, p_, u_, kDecisionMargin * c_.scale());
   }
 
   void process_edge(int ei) {
@@ -596,7 +562,7 @@ class SpringProjector {
     const double tp = (p_ - e.a).dot(d) / (len * len);
     const double w = edge_halfwidth(e) / len + kEdgeParamSlack;
     // The robot cannot stay on the edge strictly inside (tp - leave, tp + leave) (edge_leave_halfwidth).
-    const double leave = edge_leave_halfwidth(e, tp, len);
+    const double leave = edge_leave_halfwidth(e, tp);
     for (const EdgeInterval& iv : ivs) {
       const Vec3 a = e.a + iv.t0 * d, b = e.a + iv.t1 * d;
       // Along the edge toward q (and either way near it), but not into the part where it must leave;

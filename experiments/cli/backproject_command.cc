@@ -1,11 +1,13 @@
 // `cmt backproject TASK --motions M1,M2,... [--json] [--view DIR] [--check N --points K --seed S --threads T
-// --check-mode extreme|uniform --check-dir DIR]`: the strong backprojections of a chain of damper motions
-// (Buckley §5.4, Alg 5.2; docs/teaching.md "Backprojections"). From the goal backwards: S_k =
-// S_{m_k}(S_{k+1}), S_{n+1} = the goal. Prints per motion the base B (where it may stop outside its target),
-// the weak backprojection W(B) and S, whether the task's start lies in S_1, and the forward verifier's
-// verdict for the chain from S_1 under the rollouts' model; --check runs MuJoCo rollouts of the chain from
-// points of S_1. Exit 0: the start lies in S_1 (and the check, if run, had no failure); 1: not; 2: bad input
-// (a spring motion: the spring backprojection, §5.4.4, is not built).
+// --check-mode extreme|uniform --check-dir DIR]`: the strong backprojections of a chain of damper and spring
+// motions (Buckley §5.4, Alg 5.2, §5.4.3 damper, §5.4.4 spring under the via-point model; docs/teaching.md
+// "Backprojections"). From the goal backwards: S_k = S_{m_k}(S_{k+1}), S_{n+1} = the goal. Prints per motion
+// the base B (where it may stop outside its target), the weak backprojection W(B) and S, whether the task's
+// start lies in S_1, and the forward verifier's verdict for the chain from S_1 under the rollouts' model (a
+// chain with a spring: the via-point model, the position form's); --check runs MuJoCo rollouts of the chain
+// from points of S_1 (a chain with a spring: the position form). Exit 0: the start lies in S_1 (and the
+// check, if run, had no failure); 1: not; 2: bad input.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <sstream>
@@ -39,18 +41,55 @@ std::vector<std::string> split_names(const std::string& list) {
   return out;
 }
 
-// The chain's motions, checked: known and dampers.
+// The chain's motions, checked: known, and without sensing termination (the backprojection base counts
+// stops by sticking only).
 std::vector<std::string> chain_of(const LoadedTask& task, const BackprojectCli& cli) {
   const std::vector<std::string> chain = split_names(cli.motions);
-  if (chain.empty()) throw TaskError(cli.task, "--motions", "give one or more damper motions, first first");
+  if (chain.empty()) throw TaskError(cli.task, "--motions", "give one or more motions, first first");
   for (const std::string& name : chain) {
     const Motion* m = task.task.find_motion(name);
     if (!m) throw TaskError(cli.task, "motions." + name, "no such motion (--motions)");
-    if (m->kind != Motion::Kind::kDamper)
-      throw TaskError(cli.task, "motions." + name,
-                      "a spring motion: backprojection is built for the generalized damper only (Sec 5.4.3)");
+    if (m->terminate.any())
+      throw TaskError(cli.task, "motions." + name + ".terminate",
+                      "sensing termination: the backprojection base counts stops by sticking only");
   }
   return chain;
+}
+
+bool has_kind(const LoadedTask& task, const std::vector<std::string>& chain, Motion::Kind kind) {
+  return std::any_of(chain.begin(), chain.end(),
+                     [&](const std::string& name) { return task.task.find_motion(name)->kind == kind; });
+}
+bool has_spring(const LoadedTask& task, const std::vector<std::string>& chain) {
+  return has_kind(task, chain, Motion::Kind::kSpring);
+}
+bool has_damper(const LoadedTask& task, const std::vector<std::string>& chain) {
+  return has_kind(task, chain, Motion::Kind::kDamper);
+}
+
+// One motion's backprojection of `target`, as the damper's fields (the spring's model in `model`).
+struct StepBackprojection {
+  ReachedSet base, weak, strong;
+  bool fallback = false, free_rest = false;
+  int steps = 0;
+  std::string model;
+};
+
+StepBackprojection backproject_motion(const LoadedTask& task, const AtomCones& cones,
+                                      const ReachedSet& target, const Motion& m, double kappa,
+                                      double margin) {
+  if (m.kind == Motion::Kind::kSpring) {
+    SpringBackprojection b = backproject_spring(task, target, m.target, margin);
+    return {std::move(b.base),
+            std::move(b.weak),
+            std::move(b.strong),
+            b.fallback,
+            b.free_rest,
+            b.steps,
+            spring_model_name(SpringModel::kViaPoint)};
+  }
+  DamperBackprojection b = backproject_damper(task, cones, target, m.target, kappa, margin);
+  return {std::move(b.base), std::move(b.weak), std::move(b.strong), b.fallback, false, b.steps, "damper"};
 }
 
 void run_backproject(const BackprojectCli& cli, CommandState& state) {
@@ -58,6 +97,10 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   const std::string text = read_task_text(cli.task);
   const auto task = load_task_from_string(text, cli.task);
   const std::vector<std::string> chain = chain_of(*task, cli);
+  if (cli.check > 0 && has_spring(*task, chain) && has_damper(*task, chain))
+    throw TaskError(cli.task, "--check",
+                    "a chain of dampers and springs: the check runs a spring's chain in the position form, "
+                    "which has no damper");
   const AtomCones cones(task->cspace);
   const double kappa = kStopRelativeSpeed;
   // S keeps the rollouts' contact resolution from W: their contact lets the robot sink and rise by about the
@@ -70,11 +113,13 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   bool fallback = false;
   for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
     const auto t0 = std::chrono::steady_clock::now();
-    const DamperBackprojection b =
-        backproject_damper(*task, cones, target, task->task.find_motion(*it)->target, kappa, margin);
+    const StepBackprojection b =
+        backproject_motion(*task, cones, target, *task->task.find_motion(*it), kappa, margin);
     fallback = fallback || b.fallback;
     steps.push_back(
         {{"motion", *it},
+         {"model", b.model},
+         {"free_rest", b.free_rest},
          {"base", pieces_json(*task, b.base.pieces())},
          {"base_area", b.base.area()},
          {"weak_area", b.weak.area()},
@@ -97,9 +142,13 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
                         {"start_outside", pieces_json(*task, outside)},
                         {"fallback", fallback}};
   // The forward verifier under the rollouts' model (contact lift, servo coast, slow stops) from S_1: the
-  // backprojection is first-order, so this is what certifies S_1 for the rollouts.
+  // backprojection is first-order, so this is what certifies S_1 for the rollouts. A spring's backprojection
+  // is the via-point model's, the position form's: the forward check and the rollouts use that form.
+  const bool spring = has_spring(*task, chain);
+  VerifyOptions forward_options = rollout_verify_options(*task);
+  if (spring) forward_options.spring_model = SpringModel::kViaPoint;
   const VerifyResult forward =
-      verify_strategy_from(*task, Strategy::sequence("", chain), target, rollout_verify_options(*task));
+      verify_strategy_from(*task, Strategy::sequence("", chain), target, forward_options);
   out["forward"] = {{"reliable", forward.reliable},
                     {"failure", forward.failure},
                     {"outside_goal", pieces_json(*task, forward.outside_goal)}};
@@ -111,6 +160,7 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
     o.seed = cli.seed;
     o.threads = cli.threads;
     o.mode = cli.check_mode == "uniform" ? SampleMode::kUniform : SampleMode::kExtreme;
+    if (spring) o.form = ControllerForm::kPosition;
     o.dir = cli.check_dir.empty() ? std::filesystem::temp_directory_path() / "cmt-backproject"
                                   : std::filesystem::path(cli.check_dir);
     const BackprojectionCheck check = check_backprojection(text, *task, chain, target, o);
@@ -151,9 +201,10 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
 void add_backproject_command(CLI::App& app, CommandState& state) {
   auto cli = std::make_shared<BackprojectCli>();
   auto* cmd = app.add_subcommand(
-      "backproject", "strong backprojections of a chain of damper motions from the goal (Buckley Sec 5.4)");
+      "backproject",
+      "strong backprojections of a chain of damper and spring motions from the goal (Buckley Sec 5.4)");
   cmd->add_option("TASK", cli->task, "task YAML file")->required();
-  cmd->add_option("--motions", cli->motions, "the chain's damper motions, first first (comma separated)")
+  cmd->add_option("--motions", cli->motions, "the chain's motions, first first (comma separated)")
       ->required();
   cmd->add_option("--check", cli->check, "run this many rollouts from each of --points points of S (0: none)")
       ->check(CLI::Range(0, 100000));

@@ -87,6 +87,7 @@ BackprojectionCheck check_backprojection(const std::string& task_yaml, const Loa
     v.seed = options.seed + i;
     v.threads = options.threads;
     v.mode = options.mode;
+    v.form = options.form;
     c.result = check_task_file(file, text, out.strategy, v, "--check-dir");
     out.rollouts += c.result.rollouts;
     out.successes += c.result.successes;

@@ -1,5 +1,5 @@
 // Strong backprojections checked by physics (docs/teaching.md "Backprojections"): MuJoCo rollouts of a chain
-// of damper motions started at points of its strong backprojection S (the pieces' corners and points drawn
+// of motions started at points of its strong backprojection S (the pieces' corners and points drawn
 // uniformly in its face regions) must all reach the goal. Each point becomes a task file of its own (the task
 // with the chain as a strategy and the point as the start), so every failure replays with `cmt rollout`.
 #pragma once
@@ -22,7 +22,8 @@ struct BackprojectionCheckOptions {
   std::uint64_t seed = 1;
   int threads = 1;
   SampleMode mode = SampleMode::kExtreme;
-  std::filesystem::path dir;  // where the point task files are written
+  ControllerForm form = ControllerForm::kImpedance;  // the rollouts' controller form
+  std::filesystem::path dir;                         // where the point task files are written
 };
 
 struct PointCheck {

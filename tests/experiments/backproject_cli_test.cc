@@ -1,7 +1,7 @@
 // `cmt backproject` end to end (docs/teaching.md "Backprojections"): the two_blocks chains whose strong
 // backprojection holds the start (task file comments: v2 slides from B's top into the gap; v3 may stick on
 // B's top, from where v2 slides), the straight-down motion whose base holds B's top, physics from points of
-// S, and bad input.
+// S, a spring, and bad input.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -58,11 +58,29 @@ TEST(CmtBackproject, RolloutsFromPointsOfTheStrongBackprojectionReachTheGoal) {
   EXPECT_EQ(j["view"], dir + "/view/index.html");
 }
 
-TEST(CmtBackproject, SpringOrUnknownMotionsAreBadInput) {
-  const Result spring = run("backproject " + task("hole") + " --motions p1 --json");
-  EXPECT_EQ(spring.status, 2);
-  EXPECT_EQ(nlohmann::json::parse(spring.out)["error"]["key"], "motions.p1");
+// A spring (Buckley §5.4.4, the via-point model): block_shadow's spring below the floor's centre. Its base
+// is the jam at the block's far wall (verifier/spring_backprojection_test.cc derives it); the start x = -3
+// slides to the centre and lies in S.
+TEST(CmtBackproject, SpringStrongBackprojectionHoldsTheStart) {
+  const Result r = run("backproject " + task("geometry/block_shadow") + " --motions down --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["start_inside"].get<bool>());
+  ASSERT_EQ(j["steps"].size(), 1u);
+  EXPECT_EQ(j["steps"][0]["model"], "via-point");
+  EXPECT_FALSE(j["steps"][0]["free_rest"].get<bool>());
+  EXPECT_GT(j["steps"][0]["base_area"].get<double>(), 0);
+  // The room's surface is 8 x 8 x 2 + 8 x 4 x 4 = 256 in^2 plus the block's 5 in^2 of walls and top, less
+  // its 1 in^2 footprint: S holds most of it, W at least the block's far wall (1 in^2).
+  EXPECT_GT(j["steps"][0]["strong_area"].get<double>(), 150);
+  EXPECT_GT(j["steps"][0]["weak_area"].get<double>(), 1);
+}
+
+TEST(CmtBackproject, UnknownMotionsAndSensingTerminationAreBadInput) {
   EXPECT_EQ(run("backproject " + task("two_blocks") + " --motions nope --json").status, 2);
+  const Result sensing = run("backproject " + task("cube_sensing") + " --motions p1 --json");
+  EXPECT_EQ(sensing.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(sensing.out)["error"]["key"], "motions.p1.terminate");
 }
 
 }  // namespace

@@ -44,6 +44,22 @@ Points2 spring_strip(const ReachedSet::Impl& geometry, int face_index, const Poi
 Points2 chart_disk(const ReachedSet::Impl& geometry, int face_index, const Vec3& center, double r,
                    bool outer);
 
+// Motion along an edge (spring_projection.cc, "Edges" in docs/verifier.md): the half-width about q (p
+// projected on the edge's line) where the robot may move either way (|x − q| = s with s − eps_s <=
+// sin(theta_v) (|p − x| + eps_s)), or `overshoot` if larger (the via-point model's eps_o; 0 for the velocity
+// model, which does not overshoot p*), grown by kSpringRelativeSlack.
+double edge_either_way_halfwidth(const Edge& e, const Vec3& p, const Uncertainty& u, double overshoot);
+
+// The half-width (edge parameter) of the open interval about parameter tp where the robot must leave the
+// edge: it keeps an edge contact only while it may push into every face meeting there, and the pull surely
+// points away from face f beyond theta_v when (−depth_f − eps_s) > sin(theta_v) (|p − x| + eps_s), i.e.
+// within R_f = (−depth_f − eps_s) / sin(theta_v) − eps_s of p; on the line the interval's half-width is
+// sqrt(R^2 − perp^2) / len, R = max_f R_f, shrunk by `margin` (task units, on the pull) and kEdgeParamSlack
+// (favours staying). 0 when there is none (non-manifold edges: none), infinity when the robot must leave
+// everywhere.
+double edge_must_leave_halfwidth(const CSpace& cspace, const Edge& e, double tp, const Vec3& p,
+                                 const Uncertainty& u, double margin);
+
 // A right-handed orthonormal frame (u, w) of the plane with unit normal n.
 void face_frame(const Vec3& n, Vec3* u, Vec3* w);
 
