@@ -36,7 +36,8 @@ nlohmann::json unit_json(const SweepUnit& u) {
           {"falsify",
            {{"budget", u.falsify_budget},
             {"coverage_budget", u.falsify_coverage_budget},
-            {"gap_budget", u.falsify_gap_budget}}}};
+            {"gap_budget", u.falsify_gap_budget},
+            {"failure_budget", u.falsify_failure_budget}}}};
 }
 
 void print_summary(const nlohmann::json& j, bool json) {

@@ -23,6 +23,7 @@ std::string falsify_record(std::shared_ptr<const LoadedTask> task, const SweepUn
   f.budget = unit.falsify_budget;
   f.coverage_budget = unit.falsify_coverage_budget;
   f.gap_budget = unit.falsify_gap_budget;
+  f.failure_budget = unit.falsify_failure_budget;
   f.mode = unit.mode;  // the baseline's: the validation's rollouts
   f.seed = unit.seed;
   f.threads = threads;
@@ -115,7 +116,9 @@ UnitExecutor make_validation_executor() {
     const auto validate = [&](const ValidateOptions& o) {
       const ValidationResult v = run_validation(cache->task, unit.strategy, o);
       UnitRecord record = unit_record(*cache->task, v);
-      if (unit.falsify_budget + unit.falsify_coverage_budget + unit.falsify_gap_budget > 0 &&
+      if (unit.falsify_budget + unit.falsify_coverage_budget + unit.falsify_gap_budget +
+                  unit.falsify_failure_budget >
+              0 &&
           o.verifier_timed_out_after <= 0)
         record.falsify = falsify_record(cache->task, unit, v, threads);
       return record;

@@ -225,6 +225,27 @@ TEST_F(SweepCli, VerifierBudgetTimesOutIntoAResultRow) {
   run_json("sweep " + zero + " --db " + path("zero.sqlite"), 2);
 }
 
+// The failure search as a spec key (docs/sweeps.md): two_blocks `down` is verified unreliable (it may stick
+// on A's top), so a unit with a failure budget runs it and stores its fields in metrics.falsify; the
+// falsification and coverage phases are off.
+TEST_F(SweepCli, FailureBudgetRunsTheFailureSearchUnderAnUnreliableVerdict) {
+  const std::string spec =
+      test::write_file(dir_ / "failure.yaml",
+                       "n: 6\nseeds: [1]\nfalsify: {budget: 0, coverage_budget: 0, failure_budget: 24}\n"
+                       "tasks:\n  - file: " +
+                           test::source_task("two_blocks") + "\n    strategies: [down]\n")
+          .string();
+  run_json("sweep " + spec + " --db " + path("failure.sqlite") + " --threads 2", 0);
+  const auto rows = test::query_rows(path("failure.sqlite"), "SELECT falsify FROM metrics");
+  ASSERT_EQ(rows.size(), 1u);
+  const nlohmann::json f = nlohmann::json::parse(rows[0][0]);
+  EXPECT_EQ(f["failure_budget"], 24);
+  EXPECT_TRUE(f["failure_searched"].get<bool>());
+  EXPECT_GT(f["failure_rollouts"].get<int>(), 0);
+  EXPECT_LE(f["failure_rollouts"].get<int>(), 24);
+  EXPECT_EQ(f["random_rollouts"], 6);  // the validation's rollouts are the baseline
+}
+
 // A unit with a falsify budget (docs/falsify.md "In sweeps and the report"): the search runs after the
 // validation against its prediction, with its rollouts as the baseline, in the forked child under a verifier
 // budget or in the process without one, with the same result for any thread count; a verifier that timed
@@ -344,19 +365,22 @@ TEST_F(SweepCli, BadSpecsExitWithStatusTwo) {
   EXPECT_EQ(j["units"][0]["strategy"], "slide");
   EXPECT_EQ(j["units"][0]["counterexample_budget"], 10);
   EXPECT_EQ(j["units"][0]["controller"], "impedance");
-  EXPECT_EQ(j["units"][0]["falsify"],
-            (nlohmann::json{{"budget", 0}, {"coverage_budget", 0}, {"gap_budget", 0}}));
+  EXPECT_EQ(
+      j["units"][0]["falsify"],
+      (nlohmann::json{{"budget", 0}, {"coverage_budget", 0}, {"gap_budget", 0}, {"failure_budget", 0}}));
   EXPECT_EQ(j["total"], 2);
   // Budgets as the spec sets them.
   const std::string searched =
-      test::write_file(dir_ / "searched.yaml", two_unit_spec() +
-                                                   "falsify: {budget: 8, coverage_budget: 4, "
-                                                   "gap_budget: 2}\nverify_budget_seconds: 30\n")
+      test::write_file(dir_ / "searched.yaml",
+                       two_unit_spec() +
+                           "falsify: {budget: 8, coverage_budget: 4, "
+                           "gap_budget: 2, failure_budget: 3}\nverify_budget_seconds: 30\n")
           .string();
   j = run_json("sweep " + searched + " --list", 0);
   ASSERT_EQ(j["units"].size(), 2u);
-  EXPECT_EQ(j["units"][1]["falsify"],
-            (nlohmann::json{{"budget", 8}, {"coverage_budget", 4}, {"gap_budget", 2}}));
+  EXPECT_EQ(
+      j["units"][1]["falsify"],
+      (nlohmann::json{{"budget", 8}, {"coverage_budget", 4}, {"gap_budget", 2}, {"failure_budget", 3}}));
   EXPECT_EQ(j["units"][1]["verify_budget_seconds"], 30.0);
 }
 

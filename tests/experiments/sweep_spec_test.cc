@@ -326,6 +326,12 @@ TEST(SweepSpec, FalsifyBudgetsAreUnitFieldsWithPerEntryOverrides) {
   EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 5), searched);
   EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 5), base);
+  // So does the failure budget; a search without one keeps its key.
+  EXPECT_EQ(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0, 0), searched);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 1, 0, 0, 7), searched);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 0, 7), base);
+  EXPECT_NE(make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 7, 0),
+            make_unit_key(yaml, "down", 10, 1, SampleMode::kUniform, kImp, 0, 400, 0, 0, 0, 0, 7));
 }
 
 TEST(SweepSpec, FalsifyGapBudgetIsOptional) {
@@ -343,6 +349,24 @@ TEST(SweepSpec, FalsifyGapBudgetIsOptional) {
   const std::string top = "n: 10\nseeds: [1]\n";
   expect_error(two_blocks_spec("", top + "falsify: {budget: 1, coverage_budget: 0, gap_budget: -2}\n"),
                "falsify.gap_budget", "must be in [0, 10000000]");
+}
+
+TEST(SweepSpec, FalsifyFailureBudgetIsOptional) {
+  const std::string spec =
+      "n: 10\nseeds: [1]\nfalsify: {budget: 0, coverage_budget: 0, failure_budget: 40}\ntasks:\n"
+      "  - file: " +
+      kTwoBlocks + "\n    strategies: [down]\n  - file: " + kTwoBlocks +
+      "\n    strategies: [slide]\n    falsify: {budget: 20, coverage_budget: 10}\n";
+  const SweepSpec parsed = parse(spec);
+  EXPECT_EQ(parsed.falsify.failure_budget, 40);
+  EXPECT_TRUE(parsed.falsify.enabled());  // the failure search alone is a search
+  const auto units = expand_units(parsed);
+  ASSERT_EQ(units.size(), 2u);
+  EXPECT_EQ(units[0].falsify_failure_budget, 40);
+  EXPECT_EQ(units[1].falsify_failure_budget, 0);  // an entry's own falsify without it: no failure search
+  const std::string top = "n: 10\nseeds: [1]\n";
+  expect_error(two_blocks_spec("", top + "falsify: {budget: 1, coverage_budget: 0, failure_budget: -1}\n"),
+               "falsify.failure_budget", "must be in [0, 10000000]");
 }
 
 TEST(SweepSpec, FalsifyErrorsNameFileKeyAndReason) {

@@ -1,7 +1,7 @@
 // Face charts (verifier/internal/face_regions.h) of degenerate faces: a sliver face left by C-obstacle planes
 // that coincide only up to rounding (decimal coordinates far from the origin) has a 2-point polygon. Its
-// chart falls back to the face's own plane, so lifting a chart point is defined (it used to divide by zero in
-// exact arithmetic: SIGFPE).
+// chart falls back to the face's own plane, so lifting a chart point is defined (a chart through a 2-point
+// polygon's "plane" would divide by zero in exact arithmetic: SIGFPE).
 #include <gtest/gtest.h>
 
 #include "verifier/internal/face_regions.h"

@@ -132,14 +132,17 @@ class SpecParser {
     return entry;
   }
 
-  // `falsify: {budget: N, coverage_budget: M[, gap_budget: G]}`: the first two required, G 0 when missing.
+  // `falsify: {budget: N, coverage_budget: M[, gap_budget: G][, failure_budget: F]}`: the first two
+  // required, G and F 0 when missing.
   static SweepFalsify parse_falsify(const SpecNode& n) {
-    n.require_map({"budget", "coverage_budget", "gap_budget"});
+    n.require_map({"budget", "coverage_budget", "gap_budget", "failure_budget"});
     SweepFalsify f;
     f.budget = static_cast<int>(n.at("budget").integer(0, kMaxSweepFalsifyBudget));
     f.coverage_budget = static_cast<int>(n.at("coverage_budget").integer(0, kMaxSweepFalsifyBudget));
     if (n.has("gap_budget"))
       f.gap_budget = static_cast<int>(n.at("gap_budget").integer(0, kMaxSweepFalsifyBudget));
+    if (n.has("failure_budget"))
+      f.failure_budget = static_cast<int>(n.at("failure_budget").integer(0, kMaxSweepFalsifyBudget));
     return f;
   }
 

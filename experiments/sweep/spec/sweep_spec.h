@@ -29,12 +29,14 @@ inline constexpr double kMaxSweepVerifyBudgetSeconds = 7 * 24 * 3600.0;  // a we
 inline constexpr long long kMaxSweepSeed = 0x7fffffffffffffffLL;
 
 // The adversarial-rollout search after a unit's validation (docs/falsify.md "In sweeps and the report"):
-// search rollouts of the falsification, the coverage and the gap phase. All 0: no search.
+// search rollouts of the falsification, the coverage and the gap phase, and of the failure search (run only
+// under an unreliable verdict). All 0: no search.
 struct SweepFalsify {
   int budget = 0;
   int coverage_budget = 0;
-  int gap_budget = 0;  // optional in the spec
-  bool enabled() const { return budget + coverage_budget + gap_budget > 0; }
+  int gap_budget = 0;      // optional in the spec
+  int failure_budget = 0;  // optional in the spec
+  bool enabled() const { return budget + coverage_budget + gap_budget + failure_budget > 0; }
 };
 
 struct SweepTaskEntry {
@@ -63,7 +65,8 @@ struct SweepSpec {
   // Wall-clock seconds a unit's verifier may take, 0 = no limit (experiments/common/verifier_budget.h):
   // beyond it the unit records "verifier: timed out after B s" and its rollouts run without a prediction.
   double verify_budget_seconds = 0;
-  SweepFalsify falsify;  // `falsify: {budget, coverage_budget[, gap_budget]}`; missing: no search
+  SweepFalsify
+      falsify;  // `falsify: {budget, coverage_budget[, gap_budget][, failure_budget]}`; missing: none
   std::vector<SweepTaskEntry> tasks;
 };
 

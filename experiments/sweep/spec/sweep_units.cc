@@ -31,7 +31,7 @@ std::string culprit_key(const TaskError& e, const ParamSet& params, const std::s
 std::string make_unit_key(const std::string& task_yaml, const std::string& strategy, int n,
                           std::uint64_t seed, SampleMode mode, ControllerForm controller, int sticking_trials,
                           int counterexample_budget, double verify_budget_seconds, int falsify_budget,
-                          int falsify_coverage_budget, int falsify_gap_budget) {
+                          int falsify_coverage_budget, int falsify_gap_budget, int falsify_failure_budget) {
   HashInput in;
   in.add(kUnitKeyVersion)
       .add(task_yaml)
@@ -44,10 +44,12 @@ std::string make_unit_key(const std::string& task_yaml, const std::string& strat
       .add(counterexample_budget)
       .add(json_text(nlohmann::json(verify_budget_seconds)));  // shortest round-trip text
   // Only with a search: the keys of units without one stay what they were before the search existed.
-  if (falsify_budget + falsify_coverage_budget + falsify_gap_budget > 0)
+  if (falsify_budget + falsify_coverage_budget + falsify_gap_budget + falsify_failure_budget > 0)
     in.add("falsify").add(falsify_budget).add(falsify_coverage_budget);
-  // Only with a gap search: the keys of searches without one stay what they were before it existed.
+  // Only with a gap or failure search: the keys of searches without one stay what they were before it
+  // existed.
   if (falsify_gap_budget > 0) in.add("gap").add(falsify_gap_budget);
+  if (falsify_failure_budget > 0) in.add("failure").add(falsify_failure_budget);
   return fnv1a128_hex(in.text());
 }
 
@@ -69,10 +71,10 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
       for (const std::string& strategy : entry.strategies)
         for (const std::uint64_t seed : spec.seeds) {
           SweepUnit u;
-          u.unit_key =
-              make_unit_key(yaml, strategy, entry.n, seed, spec.mode, spec.controller, spec.sticking_trials,
-                            spec.counterexample_budget, spec.verify_budget_seconds, entry.falsify.budget,
-                            entry.falsify.coverage_budget, entry.falsify.gap_budget);
+          u.unit_key = make_unit_key(
+              yaml, strategy, entry.n, seed, spec.mode, spec.controller, spec.sticking_trials,
+              spec.counterexample_budget, spec.verify_budget_seconds, entry.falsify.budget,
+              entry.falsify.coverage_budget, entry.falsify.gap_budget, entry.falsify.failure_budget);
           if (!keys.insert(u.unit_key).second) {
             ++dropped;
             continue;
@@ -93,6 +95,7 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
           u.falsify_budget = entry.falsify.budget;
           u.falsify_coverage_budget = entry.falsify.coverage_budget;
           u.falsify_gap_budget = entry.falsify.gap_budget;
+          u.falsify_failure_budget = entry.falsify.failure_budget;
           u.spec_key = entry.spec_key;
           units.push_back(std::move(u));
         }

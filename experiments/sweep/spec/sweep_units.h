@@ -32,18 +32,20 @@ struct SweepUnit {
   int falsify_budget = 0;
   int falsify_coverage_budget = 0;
   int falsify_gap_budget = 0;
-  std::string spec_key;  // tasks[i], for messages
+  int falsify_failure_budget = 0;  // the failure search (under an unreliable verdict only)
+  std::string spec_key;            // tasks[i], for messages
 };
 
 // Hash of the task text after overrides, strategy, n, seed, mode, controller form, sticking trials,
 // counterexample budget and verifier time budget (a format-version tag first; fnv1a128_hex, 32 hex digits).
 // The time budget is in it because a unit's result can depend on it (a timed-out verifier). The falsify
-// budgets are added only when their sum is > 0, so units without the search keep the keys they had before
-// it existed (existing databases resume).
+// budgets are added only when their sum is > 0, and the gap and failure budgets only when each is > 0, so
+// units without a search keep the keys they had before it existed (existing databases resume).
 std::string make_unit_key(const std::string& task_yaml, const std::string& strategy, int n,
                           std::uint64_t seed, SampleMode mode, ControllerForm controller, int sticking_trials,
                           int counterexample_budget, double verify_budget_seconds = 0, int falsify_budget = 0,
-                          int falsify_coverage_budget = 0, int falsify_gap_budget = 0);
+                          int falsify_coverage_budget = 0, int falsify_gap_budget = 0,
+                          int falsify_failure_budget = 0);
 
 // Every unit of the spec: tasks in spec order, then parameter sets (grid, then random draws), strategies and
 // seeds (innermost). A unit whose key repeats an earlier one (the same values listed twice) is dropped and
