@@ -5,7 +5,7 @@
 #include "models/cspace.h"
 #include "models/friction_cone.h"
 #include "verifier/atom_cone.h"
-#include "verifier/spring.h"
+#include "verifier/stick_class.h"
 #include "verifier/unique_stick.h"
 
 namespace cmt {

@@ -107,18 +107,6 @@ std::vector<Polyhedron> edge_vertex_strong(const CSpace& cspace, int atom_id, co
 
 }  // namespace
 
-const char* stick_class_name(StickClass c) {
-  switch (c) {
-    case StickClass::kMust:
-      return "must";
-    case StickClass::kMay:
-      return "may";
-    case StickClass::kNever:
-      return "never";
-  }
-  return "may";
-}
-
 double eps_t(const Uncertainty& u) {
   if (u.theta_v == 0) return u.eps_p;
   const double t_t = u.theta_v / std::tan(u.theta_v);

@@ -5,6 +5,7 @@
 
 #include "models/cspace.h"
 #include "verifier/polyhedron.h"
+#include "verifier/stick_class.h"
 
 namespace cmt {
 
@@ -39,9 +40,6 @@ SpringStickingRegions spring_sticking_regions(const CSpace& cspace, int atom_id,
 // Its two parts on their own (the weak one builds the widened cone's polyhedral hull: the costly part).
 Polyhedron spring_weak_region(const CSpace& cspace, int atom_id, const Uncertainty& u);
 std::vector<Polyhedron> spring_strong_regions(const CSpace& cspace, int atom_id, const Uncertainty& u);
-
-enum class StickClass { kMust, kMay, kNever };
-const char* stick_class_name(StickClass c);
 
 // must: p in the strong region; may: p in the weak region only; never: p outside the weak region.
 StickClass classify_spring(const SpringStickingRegions& regions, const Vec3& commanded);
