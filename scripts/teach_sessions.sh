@@ -2,7 +2,8 @@
 # The built-in teaching sessions of the main job (docs/teaching.md), each `cmt teach --json` result written to
 # DIR/<session>.json (the report's Teaching sessions section) and each taught task to DIR/<session>.yaml; the
 # solved teaching sessions' pre-images are checked by MuJoCo rollouts from their solved cells (extreme mode, seed 1).
-# Then a damper chain's strong backprojection (`cmt backproject`), checked the same way from points of it.
+# Then a damper chain's strong backprojection (`cmt backproject`), checked the same way from points of it, and a
+# spring's (the via-point model; no rollout check: no controller form is bounded by that model yet).
 # Exit status 1 from cmt teach (not solved, or a check failure) is recorded in the JSON; 2 (bad input) stops.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,3 +36,12 @@ if [ "$status" -gt 1 ]; then
   exit "$status"
 fi
 echo "backproject two_blocks (v3, v2): exit $status" >&2
+# Buckley §5.4.4 for a spring: block_shadow's spring below the floor, backprojected from the goal (3-D page).
+status=0
+build/bin/cmt backproject models/tasks/geometry/block_shadow.yaml --motions down \
+  --view "$dir/block_shadow_backproject_view" --json >"$dir/block_shadow_backproject.json" || status=$?
+if [ "$status" -gt 1 ]; then
+  echo "cmt backproject failed with status $status" >&2
+  exit "$status"
+fi
+echo "backproject block_shadow (down): exit $status" >&2
