@@ -80,7 +80,9 @@ constexpr const char* kSummaryResultColumns =
     "json_extract(m.falsify, '$.coverage_after') AS falsify_coverage_after, "
     "json_extract(m.falsify, '$.gap_budget') AS falsify_gap_budget, json_array_length(m.falsify, '$.gaps') "
     "AS "
-    "falsify_gaps, json_extract(m.falsify, '$.gaps_reached') AS falsify_gaps_reached";
+    "falsify_gaps, json_extract(m.falsify, '$.gaps_reached') AS falsify_gaps_reached, "
+    "json_extract(m.falsify, '$.failure_budget') AS falsify_failure_budget, json_extract(m.falsify, "
+    "'$.failures') AS falsify_failures";
 
 void write_summary(SqliteDb& db, const std::filesystem::path& path) {
   const std::string from =

@@ -256,16 +256,16 @@ TEST_F(SweepStore, CsvExport) {
       "successes,unstable,ends,outside,soundness,coverage,coverage_radius,contact_tolerance,soundness_bug,"
       "has_counterexample,verify_seconds,rollout_seconds,falsify_budget,falsify_coverage_budget,"
       "falsify_rollouts,falsify_outside,falsify_coverage_before,falsify_coverage_after,falsify_gap_budget,"
-      "falsify_gaps,falsify_gaps_reached");
+      "falsify_gaps,falsify_gaps_reached,falsify_failure_budget,falsify_failures");
   // Unit 0: down, friction 0.2, seed 1: the fake's values (coverage 1/(1+0) = 1).
   EXPECT_EQ(summary[1], "1," + units[0].unit_key +
                             ",two_blocks,down,6,1,uniform,impedance,0,0.2,0,\"ends \"\"outside\"\", "
-                            "e.g.\nthe floor\",0.25,6,3,0,6,3,0.5,1.0,0.1,0.001,0,1,0.5,0.25,0,0,,,,,,,");
+                            "e.g.\nthe floor\",0.25,6,3,0,6,3,0.5,1.0,0.1,0.001,0,1,0.5,0.25,0,0,,,,,,,,,");
   // Unit 2: slide, reliable, no failure text (empty field), coverage 1/3 in shortest round-trip form.
   EXPECT_EQ(summary[2],
             "3," + units[2].unit_key +
                 ",two_blocks,slide,6,1,uniform,impedance,0,0.2,1,,0.25,6,3,0,6,3,0.5,0.3333333333333333,0.1,"
-                "0.001,0,0,0.5,0.25,0,0,,,,,,,");  // no search: budgets 0, its numbers empty
+                "0.001,0,0,0.5,0.25,0,0,,,,,,,,,");  // no search: budgets 0, its numbers empty
 
   const auto rollouts = lines(dir_ / "csv" / "rollouts.csv");
   ASSERT_EQ(rollouts.size(), 1u + 12);
@@ -293,7 +293,7 @@ UnitRecord falsify_record(const SweepUnit& u, int threads) {
   r.falsify = R"({"rollouts":)" + std::to_string(u.falsify_budget + u.falsify_coverage_budget) +
               R"(,"outside":)" + std::to_string(u.index) +
               R"(,"coverage_before":0.25,"coverage_after":0.5,"gap_budget":8,"gaps":[{"reached":true},)"
-              R"({"reached":false}],"gaps_reached":1})";
+              R"({"reached":false}],"gaps_reached":1,"failure_budget":5,"failures":2})";
   return r;
 }
 
@@ -348,19 +348,20 @@ TEST_F(SweepStore, FalsifyColumnsRoundTripThroughCommitMergeAndCsv) {
   const std::string tail =
       ",verify_seconds,rollout_seconds,falsify_budget,falsify_coverage_budget,falsify_rollouts,falsify_"
       "outside,"
-      "falsify_coverage_before,falsify_coverage_after,falsify_gap_budget,falsify_gaps,falsify_gaps_reached";
+      "falsify_coverage_before,falsify_coverage_after,falsify_gap_budget,falsify_gaps,falsify_gaps_reached,"
+      "falsify_failure_budget,falsify_failures";
   ASSERT_GE(summary[0].size(), tail.size());
   EXPECT_EQ(summary[0].substr(summary[0].size() - tail.size()), tail) << summary[0];
   // Unit 3 (slide, seed 2): 48 search rollouts, 3 outside; the plain unit: budgets 0, the rest empty.
   bool found_search = false, found_plain = false;
   for (const std::string& l : summary) {
     if (l.find(units[3].unit_key) != std::string::npos) {
-      EXPECT_EQ(l.substr(l.size() - std::string(",32,16,48,3,0.25,0.5,8,2,1").size()),
-                ",32,16,48,3,0.25,0.5,8,2,1");
+      EXPECT_EQ(l.substr(l.size() - std::string(",32,16,48,3,0.25,0.5,8,2,1,5,2").size()),
+                ",32,16,48,3,0.25,0.5,8,2,1,5,2");
       found_search = true;
     }
     if (l.find(plain[0].unit_key) != std::string::npos) {
-      EXPECT_EQ(l.substr(l.size() - std::string(",0,0,,,,,,,").size()), ",0,0,,,,,,,");
+      EXPECT_EQ(l.substr(l.size() - std::string(",0,0,,,,,,,,,").size()), ",0,0,,,,,,,,,");
       found_plain = true;
     }
   }
