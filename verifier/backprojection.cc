@@ -51,17 +51,10 @@ class BackProjector {
   }
 
   WeakBackprojection run() {
-    const bool progress = work_.run(
+    const bool capped = work_.run(
         steps_, kMaxBackprojectionSteps, [&](int fi) { process_face(fi); }, [&](int ei) { process_edge(ei); },
         [&](int vi) { process_vertex(vi); });
-    WeakBackprojection out{ReachedSet(c_)};
-    if (progress) {
-      out.fallback = true;
-      for (int id = 0; id < c_.atom_count(); ++id) weak_.add_whole_atom(id);
-    }
-    out.weak = std::move(weak_);
-    out.steps = steps_;
-    return out;
+    return finish_weak_backprojection(std::move(weak_), capped, steps_);
   }
 
  private:
@@ -216,6 +209,16 @@ Points2 grown_hull(const std::vector<Point2>& pts, double margin) {
 }
 
 }  // namespace
+
+WeakBackprojection finish_weak_backprojection(ReachedSet weak, bool capped, int steps) {
+  WeakBackprojection out{std::move(weak)};
+  if (capped) {
+    out.fallback = true;
+    for (int id = 0; id < out.weak.cspace().atom_count(); ++id) out.weak.add_whole_atom(id);
+  }
+  out.steps = steps;
+  return out;
+}
 
 WeakBackprojection weak_backproject_damper(const LoadedTask& task, const AtomCones& cones,
                                            const ReachedSet& from, const Vec3& v) {

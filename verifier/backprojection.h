@@ -29,6 +29,8 @@ struct WeakBackprojection {
   int steps = 0;
 };
 inline constexpr int kMaxBackprojectionSteps = 200000;
+// A finished fixpoint's result: `weak` as reached, or every atom when `capped` (the step cap was hit).
+WeakBackprojection finish_weak_backprojection(ReachedSet weak, bool capped, int steps);
 WeakBackprojection weak_backproject_damper(const LoadedTask& task, const AtomCones& cones,
                                            const ReachedSet& from, const Vec3& v);
 

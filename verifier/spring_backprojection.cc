@@ -201,14 +201,7 @@ class SpringBackProjector {
     const bool capped = work_.run(
         steps_, kMaxBackprojectionSteps, [&](int fi) { process_face(fi); }, [&](int ei) { process_edge(ei); },
         [&](int vi) { process_vertex(vi); });
-    WeakBackprojection out{ReachedSet(c_)};
-    if (capped) {
-      out.fallback = true;
-      for (int id = 0; id < c_.atom_count(); ++id) weak_.add_whole_atom(id);
-    }
-    out.weak = std::move(weak_);
-    out.steps = steps_;
-    return out;
+    return finish_weak_backprojection(std::move(weak_), capped, steps_);
   }
 
  private:
