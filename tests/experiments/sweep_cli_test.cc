@@ -226,8 +226,8 @@ TEST_F(SweepCli, VerifierBudgetTimesOutIntoAResultRow) {
 }
 
 // The failure search as a spec key (docs/sweeps.md): two_blocks `down` is verified unreliable (it may stick
-// on B's top, where it starts), so a unit with a failure budget runs it and stores its fields in metrics.falsify; the
-// falsification and coverage phases are off.
+// on B's top, where it starts), so a unit with a failure budget runs it and stores its fields in
+// metrics.falsify; the falsification and coverage phases are off.
 TEST_F(SweepCli, FailureBudgetRunsTheFailureSearchUnderAnUnreliableVerdict) {
   const std::string spec =
       test::write_file(dir_ / "failure.yaml",
