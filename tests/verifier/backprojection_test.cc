@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "tests/verifier/reached_set_expectations.h"
 #include "tests/verifier/test_geometry.h"
 #include "verifier/forward_projection.h"
 #include "verifier/verify.h"
@@ -16,18 +17,15 @@ namespace cmt {
 namespace {
 
 using test::edge_between;
+using test::expect_in;
+using test::expect_out;
 using test::face_at;
+using test::motion;
 
 const LoadedTask& two_blocks() {
   static const auto task = load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/two_blocks.yaml");
   return *task;
 }
-
-const Vec3& motion(const LoadedTask& t, const std::string& name) { return t.task.find_motion(name)->target; }
-
-// In the set (distance 0 up to rounding) or clearly out of it.
-void expect_in(const ReachedSet& s, const Vec3& p) { EXPECT_LT(s.distance(p), 1e-9) << p.transpose(); }
-void expect_out(const ReachedSet& s, const Vec3& p) { EXPECT_GT(s.distance(p), 0.05) << p.transpose(); }
 
 // v2 = (-1, 0, -1)/sqrt 2. On the floor (normal +z) every admissible velocity is .535-1.035 rad from -n, past
 // phi = atan .25 = .245: it always slides, with the tangential part's azimuth within asin(sin .25 / sin

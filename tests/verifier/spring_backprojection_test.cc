@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "tests/verifier/reached_set_expectations.h"
 #include "tests/verifier/test_geometry.h"
 #include "verifier/backprojection.h"
 #include "verifier/spring.h"
@@ -15,18 +16,16 @@
 namespace cmt {
 namespace {
 
+using test::expect_in;
+using test::expect_out;
 using test::face_at;
+using test::motion;
 
 const LoadedTask& block_shadow() {
   static const auto task =
       load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/geometry/block_shadow.yaml");
   return *task;
 }
-
-const Vec3& motion(const LoadedTask& t, const std::string& name) { return t.task.find_motion(name)->target; }
-
-void expect_in(const ReachedSet& s, const Vec3& p) { EXPECT_LT(s.distance(p), 1e-9) << p.transpose(); }
-void expect_out(const ReachedSet& s, const Vec3& p) { EXPECT_GT(s.distance(p), 0.05) << p.transpose(); }
 
 // B: where the motion may stop outside the goal. On the block's far wall x = 3.5 (normal +x, p 3.5 in behind
 // its plane) the weak sticking disk about p' = (3.5, 0, -1) has radius 3.5 tan(psi) + .1 / cos(psi) = 1.37,
