@@ -15,21 +15,18 @@
 #pragma once
 
 #include <algorithm>
-#include <functional>
 #include <vector>
 
 #include "verifier/internal/flight.h"
+#include "verifier/internal/spring_velocity_support.h"
 #include "verifier/spring_projection.h"
 
 namespace cmt::fp {
 
 // A cone whose half-angle reaches pi/2 − this (rad) is not used as a bound (it would not be pointed).
 inline constexpr double kVelocityPointedMargin = 0.05;
-// Flight sources are cut into pieces of angular radius <= kVelocityMaxSpread (rad) about their mean
-// direction from p, and of radial extent <= eps_s / (4 delta), at most kVelocityMaxPieces per source (past
-// it the remaining pieces are flown as they are: sound, looser).
-inline constexpr double kVelocityMaxSpread = 0.1;
-inline constexpr int kVelocityMaxPieces = 64;
+// Flight sources are cut (split_source) into pieces of angular radius <= kVelocityMaxSpread about their mean
+// direction from p and of radial extent <= eps_s / (4 delta).
 // The sizes the cuts aim for scale with eps_s (a piece's bounds blur by about eps_s anyway). With small or
 // zero sensing error (perfect sensing) they scale instead with the spring's via-point step, and never go
 // below kVelocityMinCutRelative of the scene, so that a source is not cut to the piece budget at every level
@@ -39,20 +36,6 @@ inline constexpr double kVelocityMinCutRelative = 1e-3;
 inline double cutting_eps(const Uncertainty& u, double scene_scale) {
   return std::max({u.eps_s, u.step, kVelocityMinCutRelative * scene_scale});
 }
-// In-plane directions of the support half-planes bounding a convex set's section by a face plane (an outer
-// polygon; its excess over the exact section is about its size x (1 / cos(pi / n) − 1)).
-inline constexpr int kVelocitySupportDirections = 32;
-
-// The angle between two vectors (atan2 of |a x b| and a . b: accurate near 0 and pi).
-double angle_between(const Vec3& a, const Vec3& b);
-
-// The support bounds' search over lambda (spring_velocity.cc support_section): the least value found of f on
-// [−1e3, 1e3], from a bracket about *guess, which returns the minimiser found.
-double minimize_over_lambda(const std::function<double(double)>& f, double* guess);
-
-// Keeps the part of the planar convex polygon `poly` (3-D points) where n . x <= c (Sutherland-Hodgman, in
-// doubles).
-std::vector<Vec3> clip_halfspace(const std::vector<Vec3>& poly, const Vec3& n, double c);
 
 // What one velocity-form spring motion shares across its flights and slides.
 struct VelocitySpring {
