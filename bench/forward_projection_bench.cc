@@ -1,4 +1,4 @@
-// Generalized-damper forward projection (verifier/forward_projection.h) on two_blocks (Buckley Fig 4.1) and
+// Generalized-damper forward projection (verifier/damper_projection.h) on two_blocks (Buckley Fig 4.1) and
 // on synthetic scenes: a k x k grid of unit C-space boxes on a floor (k = 1, 4, 13: 14, ~110, ~1000 faces).
 // Ratios against the same run's baseline: building the scene's C-space (BM_BuildCSpace/k). And the whole
 // verification of the hole task's taught strategy (two spring motions, Buckley §5.2) and of the conditional
@@ -12,7 +12,7 @@
 
 #include "models/loaded_task.h"
 #include "verifier/atom_cone.h"
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 #include "verifier/verify.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // Weak and strong damper backprojections (Buckley Alg 5.2, §5.4.3): the forward projection's relations
-// (forward_projection.cc steps A-D) read backwards. Each forward rule "from a point y the robot may reach z"
+// (damper_projection.cc steps A-D) read backwards. Each forward rule "from a point y the robot may reach z"
 // becomes "z in W puts y in W":
 //  - A, sliding on a face: z in y + wedge, so y in z - wedge (the wedge swept back);
 //  - B, along an edge toward an end: y behind z in that direction;
@@ -13,8 +13,8 @@
 #include <cmath>
 
 #include "verifier/damper.h"
+#include "verifier/internal/damper_flight.h"
 #include "verifier/internal/face_sweep.h"
-#include "verifier/internal/flight.h"
 #include "verifier/internal/worklist.h"
 
 namespace cmt {
@@ -38,7 +38,7 @@ class BackProjector {
       must_.push_back(classify_damper(cones, id, v_, theta_v_) == StickClass::kMust);
     for (const Face& f : c_.faces()) {
       sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
-      // Forward flights leave a face only when some admissible velocity does (forward_projection.cc, D);
+      // Forward flights leave a face only when some admissible velocity does (damper_projection.cc, D);
       // they land on it only when some admissible velocity enters it.
       lifts_off_.push_back(v_.dot(f.normal) > -std::sin(theta_v_ + kFlightAngleSlack));
       lands_on_.push_back(v_.dot(f.normal) < std::sin(theta_v_ + kFlightAngleSlack));
@@ -185,7 +185,7 @@ class BackProjector {
   std::vector<Sweep> sweeps_;
   std::vector<bool> lifts_off_, lands_on_;
   FlightCone reverse_cone_;
-  std::vector<std::vector<FlightSource::Wall>> walls_;  // per face: its concave neighbours (flight.h)
+  std::vector<std::vector<FlightSource::Wall>> walls_;  // per face: its concave neighbours (damper_flight.h)
 };
 
 // The atoms where the motion may stop (forward_project_damper's termination atoms), less the target.

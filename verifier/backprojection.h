@@ -1,6 +1,6 @@
 // Weak and strong backprojections of one generalized-damper motion (Buckley §5.4.2-5.4.3, Alg 5.2): the
 // contact points from which the motion might reach a set, and those from which it surely ends in a target.
-// The reversal of the forward projection (verifier/forward_projection.h) under the same first-order model:
+// The reversal of the forward projection (verifier/damper_projection.h) under the same first-order model:
 // velocities anywhere in cone(v, theta_v), switching freely; sliding by Alg 4.3 and tangential flight (the
 // face's sweep wedge); straight-line flight with occlusion by single occluders.
 #pragma once

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "verifier/damper.h"
-#include "verifier/internal/flight.h"
+#include "verifier/internal/damper_flight.h"
 
 namespace cmt::fp {
 namespace {

@@ -1,5 +1,5 @@
 // Generalized-spring forward projection (Buckley §4.4, Alg 4.4 inside the Alg 4.1 framework). A worklist
-// fixpoint like forward_projection.cc, with three kinds of face work:
+// fixpoint like damper_projection.cc, with three kinds of face work:
 //   entries  (start, landings from flight, seeds from edges/vertices): the robot may slide from them within
 //            the eps_t strip toward p' (Fig 3.14); an entry is slid once (what was slid from is recorded, so
 //            a landing already inside a reached region is still slid: its own strip may reach further);
@@ -656,7 +656,7 @@ class SpringProjector {
     return false;
   }
 
-  // Contact lift at a concave edge (the dampers' add_lift_bands, forward_projection.cc): sliding on face g
+  // Contact lift at a concave edge (the dampers' add_lift_bands, damper_projection.cc): sliding on face g
   // toward the edge, the robot may be up to lift_ off g (MuJoCo's slip hops; the bound
   // experiments/validation/verifier_model.h rollout_contact_lift holds for springs too, whose speed is at
   // most the top speed). Its velocity while off g is the model's, so it meets the other face f above the

@@ -1,5 +1,5 @@
 // Forward projection and termination of one generalized-spring motion (Buckley §3.3, §4.4, Alg 4.4, which the
-// thesis only proposed), in the framework of forward_projection.h (Alg 4.1: flight, sliding, edges, vertices,
+// thesis only proposed), in the framework of damper_projection.h (Alg 4.1: flight, sliding, edges, vertices,
 // fixpoint). Sound: `termination` contains every contact point where a spring motion commanded to p and
 // obeying the error bounds (theta_v, eps_s, eps_p, step: eps_t, eps_o) can come to rest, and
 // `free_termination` is set whenever it may come to rest in free space (near p). docs/verifier.md, "Spring".

@@ -5,7 +5,7 @@
 
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 #include "verifier/sensing_termination.h"
 #include "verifier/slide_forever.h"
 #include "verifier/spring_projection.h"

@@ -10,7 +10,7 @@
 
 #include "tests/verifier/reached_set_expectations.h"
 #include "tests/verifier/test_geometry.h"
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 #include "verifier/verify.h"
 
 namespace cmt {

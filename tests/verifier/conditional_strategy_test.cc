@@ -229,8 +229,8 @@ TEST(ConditionalVerify, ABranchThatStopsOutsideTheGoalFailsAndUnreachableBranche
 // velocity cone's rim crosses the friction cone (the sliding cone's second regime: cos omega = (cos theta -
 // cos phi cos beta) / (sin phi sin beta), omega = .965); it reaches B's left rim x = 1.5 for |y| <= 1.5 tan
 // omega (the rim is convex and v3 leaves B's left face, so the robot does not slide along it); flights along
-// the 24-gon circumscribing cone(v3, theta_v) (flight.h's rays) land 3 below; on the gap floor the robot
-// slides left within the same wedge to A's wall. The area of that convex set clipped to the gap floor
+// the 24-gon circumscribing cone(v3, theta_v) (damper_flight.h's rays) land 3 below; on the gap floor the
+// robot slides left within the same wedge to A's wall. The area of that convex set clipped to the gap floor
 // [-1.5, 1.5] x [-4, 4].
 double two_blocks_tilt_gap_area() {
   const Vec3 v = Vec3(-0.3, 0, -1).normalized();

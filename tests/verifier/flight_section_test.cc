@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <random>
 
-#include "verifier/internal/flight.h"
+#include "verifier/internal/damper_flight.h"
 #include "verifier/reached_set.h"
 
 namespace cmt {

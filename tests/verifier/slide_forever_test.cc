@@ -11,7 +11,7 @@
 #include <string>
 
 #include "tests/verifier/test_geometry.h"
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 #include "verifier/verify.h"
 
 namespace cmt {

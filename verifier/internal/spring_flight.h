@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "verifier/internal/flight.h"
+#include "verifier/internal/damper_flight.h"
 
 namespace cmt::fp {
 

@@ -17,7 +17,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "verifier/internal/flight.h"
+#include "verifier/internal/damper_flight.h"
 #include "verifier/internal/spring_velocity_support.h"
 #include "verifier/spring_projection.h"
 

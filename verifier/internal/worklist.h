@@ -31,7 +31,7 @@ void add_boundary_closure(const ReachedSet::Impl& r, int fi, const std::vector<P
   }
 }
 
-// The damper projections' worklist (forward_projection.cc, backprojection.cc). The adders store into the set
+// The damper projections' worklist (damper_projection.cc, backprojection.cc). The adders store into the set
 // and queue only what is new: a face region's growth wider than kRegionGrowthCells, segments and points not
 // covered yet, edge growth longer than 4 kEdgeParamSlack (shorter is rounding: stored, not propagated; so is
 // an extension of a held interval by at most kRegionGrowthCells region cells, which still reaches an end's

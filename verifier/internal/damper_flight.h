@@ -16,7 +16,7 @@ inline constexpr int kFlightConeRays = 24;
 inline constexpr double kFlightAngleSlack = 1e-9;
 struct FlightCone {
   std::vector<Vec3> rays;
-  double far = 0;  // truncation length: >= 2 x scene scale (see flight.cc)
+  double far = 0;  // truncation length: >= 2 x scene scale (see damper_flight.cc)
 };
 FlightCone flight_cone(const Vec3& v, double theta_v, double scale);
 
@@ -52,9 +52,9 @@ inline constexpr double kFlightSectionRelativeError = 1e-14;
 // exactly, so that a section that is a segment or a point stays lower-dimensional.
 inline constexpr double kFlightThinSection = 1e3;
 // The section of conv(x_i) ⊕ conv(s_k) (s_0 = 0, s_1.. a ring of cone generators) by the chart's plane, in
-// doubles from the Minkowski sum's edges, grown to a superset of the exact section (flight.cc). False when no
-// edge can cross the plane; *thin when the section is narrower than kFlightThinSection pads or its pad
-// exceeds half the chart's region cell (then *out is unset and the exact section is to be used).
+// doubles from the Minkowski sum's edges, grown to a superset of the exact section (damper_flight.cc). False
+// when no edge can cross the plane; *thin when the section is narrower than kFlightThinSection pads or its
+// pad exceeds half the chart's region cell (then *out is unset and the exact section is to be used).
 // Generators are numbered i |s| + k for x_i + s_k; *crossing (when given) receives every edge whose plane
 // values can have opposite signs or vanish (all the edges that can meet the plane), with each end's sign
 // where its error bound already decides it (+1 or -1; 0: undecided).

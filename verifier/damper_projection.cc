@@ -3,7 +3,7 @@
 // face (exact regularized difference against what was there), of an edge (intervals) or a vertex is processed
 // once: sliding (A), edges (B), vertices (C), flight (D); the loop ends when nothing grows (E); termination
 // keeps the atoms that may stick (F).
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <numbers>
 
 #include "verifier/damper.h"
+#include "verifier/internal/damper_flight.h"
 #include "verifier/internal/face_sweep.h"
-#include "verifier/internal/flight.h"
 #include "verifier/internal/worklist.h"
 #include "verifier/slide_forever.h"
 

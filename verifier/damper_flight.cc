@@ -10,7 +10,7 @@
 // (far r_k, far r_k+1). Those crossings are computed in doubles with interval bounds on the signs
 // (section_in_doubles); a section thinner than a thousand of its rounding pads is recomputed exactly (Epeck)
 // from the edges that can cross, so a segment or point stays one (section_exact).
-#include "verifier/internal/flight.h"
+#include "verifier/internal/damper_flight.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>

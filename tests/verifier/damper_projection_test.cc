@@ -1,6 +1,6 @@
 // Hand-checked geometry of the generalized-damper forward projection (Buckley Alg 4.1/4.3; design steps A-F).
 // Every expected value is derived in the comments from the scene, not taken from the program's output.
-#include "verifier/forward_projection.h"
+#include "verifier/damper_projection.h"
 
 #include <gtest/gtest.h>
 
