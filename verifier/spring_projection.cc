@@ -29,6 +29,35 @@ namespace {
 
 using namespace fp;
 
+// Widening's count of the fixpoint rounds (work items) in which an atom grew
+// (SpringProjector::grew_this_round).
+struct Growth {
+  int rounds = 0;
+  int last_step = -1;  // the work item of the last counted growth
+};
+
+// One face's part of a spring projection: what p and the uncertainty fix (center .. weak), then the
+// fixpoint's work lists.
+struct FaceState {
+  Vec3 center;                     // p', p projected on the face's plane
+  double depth = 0;                // offset − n . p (> 0: p lies behind the face, inside the obstacle)
+  ChartRegion strong;              // strong sticking configurations, pulled in by the region rounding
+  Points2 strong_poly;             // the same as a convex polygon
+  ChartRegion no_slide, no_leave;  // pointwise leave/stay disks (inner polygons)
+  Points2 weak;                    // weak sticking configurations (outer polygon)
+  // Entries not yet slid, every entry so far, reached parts not yet processed (edges, corners, flight); the
+  // *_lower lists hold the same as segments and points.
+  ChartRegion pending_entry, entered, pending_new;
+  std::vector<Points2> pending_entry_lower, entered_lower, pending_new_lower;
+  Growth growth;
+};
+
+// One edge's fixpoint work: reached intervals not yet processed.
+struct EdgeState {
+  std::vector<EdgeInterval> pending;
+  Growth growth;
+};
+
 class SpringProjector {
  public:
   SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model,
@@ -57,24 +86,16 @@ class SpringProjector {
     nf_ = static_cast<int>(c_.faces().size());
     ne_ = static_cast<int>(c_.edges().size());
     nv_ = static_cast<int>(c_.vertices().size());
-    pend_entry_.resize(nf_);
-    pend_entry_lower_.resize(nf_);
-    entered_.resize(nf_);
-    entered_lower_.resize(nf_);
-    pend_new_.resize(nf_);
-    pend_new_lower_.resize(nf_);
-    pend_edge_.resize(ne_);
-    face_growths_.assign(nf_, 0);
-    edge_growths_.assign(ne_, 0);
-    face_growth_step_.assign(nf_, -1);
-    edge_growth_step_.assign(ne_, -1);
+    face_.resize(nf_);
+    edge_.resize(ne_);
     pend_vertex_.assign(nv_, 0);
     for (int fi = 0; fi < nf_; ++fi) {
       const Face& f = c_.faces()[fi];
       const FaceStickingRadii rad = face_sticking_radii(f, p_, u_);
       const double weak_radius = slow_radius_ > 0 ? face_sticking_radii(f, p_, u_weak).weak : rad.weak;
-      centers_.push_back(rad.center);
-      depth_.push_back(f.offset - f.normal.dot(p_));
+      FaceState& state = face_[fi];
+      state.center = rad.center;
+      state.depth = f.offset - f.normal.dot(p_);
       ChartRegion strong;
       Points2 strong_poly;
       if (rad.strong > 0) {
@@ -90,16 +111,16 @@ class SpringProjector {
           strong_poly = s;
         }
       }
-      strong_poly_.push_back(strong_poly);
-      no_slide_.push_back(inner_disk_set(fi, rad.center, no_slide_radius(fi)));
-      no_leave_.push_back(inner_disk_set(fi, rad.center, no_leave_radius(fi)));
+      state.strong_poly = strong_poly;
+      state.no_slide = inner_disk_set(fi, rad.center, no_slide_radius(fi));
+      state.no_leave = inner_disk_set(fi, rad.center, no_leave_radius(fi));
       Points2 w;
       if (std::isinf(weak_radius))
         w = r_.face_polygon[fi];
       else if (weak_radius >= 0)
         w = clip(chart_disk(r_, fi, rad.center, weak_radius, true), r_.face_polygon[fi]);
-      weak_.push_back(w);
-      strong_.push_back(std::move(strong));
+      state.weak = w;
+      state.strong = std::move(strong);
     }
     for (int id = nf_; id < c_.atom_count(); ++id) {
       SpringStickingRegions reg;
@@ -128,10 +149,10 @@ class SpringProjector {
     const bool progress = sweep_until_stable(
         nf_, ne_, nv_, steps_, kMaxSpringFixpointSteps,
         [&](int fi) {
-          return !pend_entry_[fi].is_empty() || !pend_entry_lower_[fi].empty() || !pend_new_[fi].is_empty() ||
-                 !pend_new_lower_[fi].empty();
+          return !face_[fi].pending_entry.is_empty() || !face_[fi].pending_entry_lower.empty() ||
+                 !face_[fi].pending_new.is_empty() || !face_[fi].pending_new_lower.empty();
         },
-        [&](int fi) { process_face(fi); }, [&](int ei) { return !pend_edge_[ei].empty(); },
+        [&](int fi) { process_face(fi); }, [&](int ei) { return !edge_[ei].pending.empty(); },
         [&](int ei) { process_edge(ei); }, [&](int vi) { return pend_vertex_[vi] != 0; },
         [&](int vi) { process_vertex(vi); });
     if (progress) {
@@ -192,16 +213,16 @@ class SpringProjector {
   // Widening counts the fixpoint rounds (work items) in which an atom grew, not the additions: one flight's
   // pieces may add dozens of abutting slivers to an edge at once. Returns the round count after this growth
   // (unchanged when the atom already grew in this work item).
-  int grew_this_round(std::vector<int>& count, std::vector<int>& last_step, int i) const {
-    if (last_step[i] == steps_) return -1;
-    last_step[i] = steps_;
-    return ++count[i];
+  int grew_this_round(Growth& g) const {
+    if (g.last_step == steps_) return -1;
+    g.last_step = steps_;
+    return ++g.rounds;
   }
   void add_reached_region(int fi, const ChartRegion& part) {
     ChartRegion added;
     if (!r_.add_region(fi, part, &added)) return;
-    pend_new_[fi].join(added);
-    const int rounds = grew_this_round(face_growths_, face_growth_step_, fi);
+    face_[fi].pending_new.join(added);
+    const int rounds = grew_this_round(face_[fi].growth);
     if (rounds == kSpringWideningRounds) {  // widening, first stage: each region component's convex hull
       ++widened_;
       // Per component (outer boundary), not one hull of everything: a face may hold separate parts far
@@ -225,23 +246,23 @@ class SpringProjector {
   }
   void add_reached_lower(int fi, const Points2& pts) {
     const bool fresh = pts.size() == 2 ? r_.add_segment(fi, pts[0], pts[1]) : r_.add_point(fi, pts[0]);
-    if (fresh) pend_new_lower_[fi].push_back(pts);
+    if (fresh) face_[fi].pending_new_lower.push_back(pts);
   }
   void add_entry_region(int fi, const ChartRegion& part) {
     add_reached_region(fi, part);
     ChartRegion fresh = part;
-    fresh.difference(entered_[fi]);
+    fresh.difference(face_[fi].entered);
     if (fresh.is_empty()) return;
-    entered_[fi].join(part);
-    if (fresh.wider_than(kRegionGrowthCells)) pend_entry_[fi].join(fresh);
+    face_[fi].entered.join(part);
+    if (fresh.wider_than(kRegionGrowthCells)) face_[fi].pending_entry.join(fresh);
   }
   void add_entry_lower(int fi, const Points2& pts) {
     if (pts.empty()) return;
     add_reached_lower(fi, pts);
-    for (const Points2& e : entered_lower_[fi])
+    for (const Points2& e : face_[fi].entered_lower)
       if (e == pts) return;
-    entered_lower_[fi].push_back(pts);
-    pend_entry_lower_[fi].push_back(pts);
+    face_[fi].entered_lower.push_back(pts);
+    face_[fi].pending_entry_lower.push_back(pts);
   }
   // The velocity model's invariant half-spaces cut an edge interval (false: nothing of it is reachable).
   bool within_bounds(int ei, double* t0, double* t1) const {
@@ -268,8 +289,8 @@ class SpringProjector {
     const double fresh = r_.add_interval(ei, t0, t1, &added);
     if (fresh < 0) return;
     if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
-      for (const EdgeInterval& iv : added) pend_edge_[ei].push_back(iv);
-    const int rounds = fresh > 0 ? grew_this_round(edge_growths_, edge_growth_step_, ei) : -1;
+      for (const EdgeInterval& iv : added) edge_[ei].pending.push_back(iv);
+    const int rounds = fresh > 0 ? grew_this_round(edge_[ei].growth) : -1;
     // Widening, first stage: the hull [min t0, max t1] of what the edge holds.
     if (rounds == kSpringWideningRounds) {
       ++widened_;
@@ -300,10 +321,12 @@ class SpringProjector {
   // obstacle side when (depth − eps_s) > tan(theta_v) (d + eps_s), always into free space when (−depth −
   // eps_s) > tan(theta_v) (d + eps_s). Compared with a relative margin that favours moving.
   bool may_leave(int fi, const std::vector<Vec3>& pts) const {
-    return !(depth_[fi] - u_.eps_s > tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+    return !(face_[fi].depth - u_.eps_s >
+             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
   }
   bool may_stay(int fi, const std::vector<Vec3>& pts) const {
-    return !(-depth_[fi] - u_.eps_s > tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+    return !(-face_[fi].depth - u_.eps_s >
+             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
   }
   // From the edge onto face fi (m = the in-face unit normal of the edge pointing into the face): where
   // x -> (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) + decision margin is < 0, (p − x̂) . m <
@@ -357,8 +380,12 @@ class SpringProjector {
   // points into free space for every sensed position), one within no_leave_radius must stay. 0: no such
   // points. From (−depth − eps_s) = tan(theta_v) (d + eps_s), resp. (depth − eps_s) = tan(theta_v) (d +
   // eps_s).
-  double no_slide_radius(int fi) const { return std::max(0.0, (-depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
-  double no_leave_radius(int fi) const { return std::max(0.0, (depth_[fi] - u_.eps_s) / tan_v_ - u_.eps_s); }
+  double no_slide_radius(int fi) const {
+    return std::max(0.0, (-face_[fi].depth - u_.eps_s) / tan_v_ - u_.eps_s);
+  }
+  double no_leave_radius(int fi) const {
+    return std::max(0.0, (face_[fi].depth - u_.eps_s) / tan_v_ - u_.eps_s);
+  }
   // The part of the face inside a polygon inscribed in that disk, shrunk by the decision margin (what is
   // subtracted is inside the open disk: sound).
   ChartRegion inner_disk_set(int fi, const Vec3& center, double radius) const {
@@ -376,13 +403,13 @@ class SpringProjector {
   // the plane and farther along it.
   double in_plane_overshoot(int fi, const std::vector<Vec3>& from) const {
     const double d = max_dist(fi, from) + u_.eps_s;
-    const double h = std::max(0.0, std::abs(depth_[fi]) - u_.eps_s);
+    const double h = std::max(0.0, std::abs(face_[fi].depth) - u_.eps_s);
     if (h == 0) return eps_o_;
     return eps_o_ * (d / std::hypot(d, h)) * (1 + kSpringRelativeSlack);
   }
   double max_dist(int fi, const std::vector<Vec3>& pts) const {
     double d = 0;
-    for (const Vec3& x : pts) d = std::max(d, (x - centers_[fi]).norm());
+    for (const Vec3& x : pts) d = std::max(d, (x - face_[fi].center).norm());
     return d;
   }
   std::vector<Vec3> lifted(int fi, const Points2& part) const {
@@ -403,13 +430,13 @@ class SpringProjector {
   // hull (it contains the strips from each: same generators, larger hull), clipped to the face; the part
   // outside the no-slide disk is reached.
   void slide_entries(int fi) {
-    ChartRegion entry = std::move(pend_entry_[fi]);
-    pend_entry_[fi] = ChartRegion();
-    std::vector<Points2> lower = std::move(pend_entry_lower_[fi]);
-    pend_entry_lower_[fi].clear();
+    ChartRegion entry = std::move(face_[fi].pending_entry);
+    face_[fi].pending_entry = ChartRegion();
+    std::vector<Points2> lower = std::move(face_[fi].pending_entry_lower);
+    face_[fi].pending_entry_lower.clear();
     if (entry.is_empty() && lower.empty()) return;
-    entry.difference(strong_[fi]);
-    entry.difference(no_slide_[fi]);
+    entry.difference(face_[fi].strong);
+    entry.difference(face_[fi].no_slide);
     if (model_ == SpringModel::kVelocity) {
       // Each convex entry piece and each lower entry on its own (their union is what the hull bounds, more
       // tightly: the spiral bounds are per source).
@@ -429,7 +456,7 @@ class SpringProjector {
       }
       ChartRegion slid_all = union_of(std::move(slid_parts));
       if (!slid_all.is_empty()) {
-        slid_all.difference(no_slide_[fi]);
+        slid_all.difference(face_[fi].no_slide);
         add_reached_region(fi, slid_all);
       }
       return;
@@ -442,12 +469,12 @@ class SpringProjector {
         entry_pts.insert(entry_pts.end(), l.begin(), l.end());
     const Points2 entry_hull = hull_or_points(entry_pts);
     if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
-    const Points2 strip = spring_strip(r_, fi, entry_hull, centers_[fi], eps_t_,
+    const Points2 strip = spring_strip(r_, fi, entry_hull, face_[fi].center, eps_t_,
                                        in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {
       // The slide ends where the robot must leave the face: the strip outside the no-slide disk.
       ChartRegion slid(to_polygon(strip), r_.charts[fi].cell);
-      slid.difference(no_slide_[fi]);
+      slid.difference(face_[fi].no_slide);
       add_reached_region(fi, slid);
     } else if (!strip.empty()) {
       add_reached_lower(fi, strip);
@@ -456,26 +483,26 @@ class SpringProjector {
 
   // A lower entry inside the face's strong configurations sticks where it enters (Alg 4.4).
   bool sticks_strongly(int fi, const Points2& l) const {
-    if (strong_poly_[fi].empty()) return false;
+    if (face_[fi].strong_poly.empty()) return false;
     for (const Point2& q : l)
-      if (!inside_closed(strong_poly_[fi], q)) return false;
+      if (!inside_closed(face_[fi].strong_poly, q)) return false;
     return true;
   }
 
   // New reached parts: the edges and corners they touch, then one flight from the hull of what may leave.
   void process_new_parts(int fi) {
     const FaceChart& chart = r_.charts[fi];
-    ChartRegion fresh = std::move(pend_new_[fi]);
-    pend_new_[fi] = ChartRegion();
+    ChartRegion fresh = std::move(face_[fi].pending_new);
+    face_[fi].pending_new = ChartRegion();
     std::vector<Points2> news = convex_pieces(fresh);
-    for (Points2& l : pend_new_lower_[fi]) news.push_back(std::move(l));
-    pend_new_lower_[fi].clear();
+    for (Points2& l : face_[fi].pending_new_lower) news.push_back(std::move(l));
+    face_[fi].pending_new_lower.clear();
     add_boundary_closure(
         r_, fi, news, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
         [&](int vi) { add_vertex(vi); });
-    fresh.difference(strong_[fi]);
+    fresh.difference(face_[fi].strong);
     // Points inside the no-leave disk cannot leave the face: they do not fly.
-    fresh.difference(no_leave_[fi]);
+    fresh.difference(face_[fi].no_leave);
     // One source per face step: the hull of everything new outside the strong configurations (the volume
     // from a hull contains the volumes from its parts: sound, looser, far fewer exact sections).
     Points2 fly_pts;
@@ -508,7 +535,7 @@ class SpringProjector {
         // near such a point the height above the plane only grows and no path from free space reaches it
         // (docs/verifier.md "No landing where the pull leaves the face"). The start keeps its points.
         if (!h.region.is_empty()) {
-          h.region.difference(no_slide_[h.face]);
+          h.region.difference(face_[h.face].no_slide);
           if (h.region.is_empty()) continue;
         } else if (inside_no_slide(h.face, h.lower)) {
           continue;
@@ -523,9 +550,9 @@ class SpringProjector {
 
   // Every point of `pts` (chart points of face fi) strictly inside the no-slide disk (its inner polygon).
   bool inside_no_slide(int fi, const Points2& pts) const {
-    if (pts.empty() || no_slide_[fi].is_empty()) return false;
+    if (pts.empty() || face_[fi].no_slide.is_empty()) return false;
     for (const Point2& q : pts)
-      if (no_slide_[fi].oriented_side(q) != CGAL::ON_POSITIVE_SIDE) return false;
+      if (face_[fi].no_slide.oriented_side(q) != CGAL::ON_POSITIVE_SIDE) return false;
     return true;
   }
 
@@ -547,8 +574,8 @@ class SpringProjector {
 
   void process_edge(int ei) {
     ++steps_;
-    std::vector<EdgeInterval> ivs = std::move(pend_edge_[ei]);
-    pend_edge_[ei].clear();
+    std::vector<EdgeInterval> ivs = std::move(edge_[ei].pending);
+    edge_[ei].pending.clear();
     const Edge& e = c_.edges()[ei];
     for (const EdgeInterval& iv : ivs) {
       if (iv.t0 <= kEdgeParamSlack) add_vertex(e.vertex_a - nf_ - ne_);
@@ -643,7 +670,7 @@ class SpringProjector {
     const FaceSet& fs = r_.faces[g];
     if (!fs.region.is_empty()) {
       ChartRegion sliding = fs.region;
-      sliding.difference(strong_[g]);
+      sliding.difference(face_[g].strong);
       for (const Points2& piece : convex_pieces(sliding))
         if (!must_leave(piece)) return true;
     }
@@ -706,7 +733,7 @@ class SpringProjector {
     ReachedSet out(c_);
     ReachedSet::Impl& t = out.impl();
     for (int fi = 0; fi < nf_; ++fi) {
-      const Points2& w = weak_[fi];
+      const Points2& w = face_[fi].weak;
       if (w.empty()) continue;
       const FaceSet& f = r_.faces[fi];
       if (!f.region.is_empty() && w.size() >= 3) {
@@ -759,20 +786,11 @@ class SpringProjector {
   ReachedSet reached_;
   ReachedSet::Impl& r_;
   int nf_ = 0, ne_ = 0, nv_ = 0;
-  std::vector<Vec3> centers_;
-  std::vector<double> depth_;
-  std::vector<ChartRegion> strong_;
-  std::vector<Points2> strong_poly_;
-  std::vector<ChartRegion> no_slide_, no_leave_;  // pointwise leave/stay disks (inner polygons)
-  std::vector<Points2> weak_;
+  std::vector<FaceState> face_;
+  std::vector<EdgeState> edge_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices
   double slow_radius_ = 0;                     // slow_stop_radius (velocity model)
-  std::vector<ChartRegion> pend_entry_, entered_, pend_new_;
-  std::vector<std::vector<Points2>> pend_entry_lower_, entered_lower_, pend_new_lower_;
-  std::vector<std::vector<EdgeInterval>> pend_edge_;
   std::vector<char> pend_vertex_;
-  std::vector<int> face_growths_, edge_growths_;  // growth counts for widening: fixpoint rounds that grew it
-  std::vector<int> face_growth_step_, edge_growth_step_;  // the work item (steps_) of the last counted growth
   int widened_ = 0;
   bool flew_ = false;
   int steps_ = 0;
