@@ -25,27 +25,27 @@ using namespace fp;
 class BackProjector {
  public:
   BackProjector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& from, const Vec3& v)
-      : c_(lt.cspace),
+      : cspace_(lt.cspace),
         v_(v.normalized()),
         theta_v_(lt.task.uncertainty.theta_v),
         weak_(from),
-        r_(weak_.impl()),
-        work_(r_) {  // everything in `from` is pending
-    nf_ = static_cast<int>(c_.faces().size());
-    ne_ = static_cast<int>(c_.edges().size());
-    nv_ = static_cast<int>(c_.vertices().size());
-    for (int id = 0; id < c_.atom_count(); ++id)
+        reached_impl_(weak_.impl()),
+        work_(reached_impl_) {  // everything in `from` is pending
+    face_count_ = static_cast<int>(cspace_.faces().size());
+    edge_count_ = static_cast<int>(cspace_.edges().size());
+    vertex_count_ = static_cast<int>(cspace_.vertices().size());
+    for (int id = 0; id < cspace_.atom_count(); ++id)
       must_.push_back(classify_damper(cones, id, v_, theta_v_) == StickClass::kMust);
-    for (const Face& f : c_.faces()) {
-      sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
+    for (const Face& f : cspace_.faces()) {
+      sweeps_.push_back(face_sweep(f, v_, theta_v_, cspace_.scale()));
       // Forward flights leave a face only when some admissible velocity does (damper_projection.cc, D);
       // they land on it only when some admissible velocity enters it.
       lifts_off_.push_back(v_.dot(f.normal) > -std::sin(theta_v_ + kFlightAngleSlack));
       lands_on_.push_back(v_.dot(f.normal) < std::sin(theta_v_ + kFlightAngleSlack));
     }
-    reverse_cone_ = flight_cone(-v_, theta_v_, c_.scale());
-    walls_.resize(nf_);
-    for (const Edge& e : c_.edges())
+    reverse_cone_ = flight_cone(-v_, theta_v_, cspace_.scale());
+    walls_.resize(face_count_);
+    for (const Edge& e : cspace_.edges())
       if (e.shape == EdgeShape::kConcave && e.faces.size() == 2)
         for (int k = 0; k < 2; ++k) walls_[e.faces[k]].push_back({e.faces[1 - k], exact(e.a), exact(e.b)});
   }
@@ -63,10 +63,11 @@ class BackProjector {
     const Sweep& sw = sweeps_[fi];
     if (must_[fi] || sw.none) return;
     if (sw.whole) {
-      work_.add_region(fi, ChartRegion(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell));
+      work_.add_region(
+          fi, ChartRegion(to_polygon(reached_impl_.face_polygon[fi]), reached_impl_.charts[fi].cell));
       return;
     }
-    const FaceChart& chart = r_.charts[fi];
+    const FaceChart& chart = reached_impl_.charts[fi];
     const Vector2 bp = chart.project_direction(sw.far * sw.b_plus);
     const Vector2 bm = chart.project_direction(sw.far * sw.b_minus);
     Points2 pts = part;
@@ -74,7 +75,7 @@ class BackProjector {
       pts.push_back(p - bp);
       pts.push_back(p - bm);
     }
-    work_.add_convex(fi, clip(convex_hull(pts), r_.face_polygon[fi]));
+    work_.add_convex(fi, clip(convex_hull(pts), reached_impl_.face_polygon[fi]));
   }
 
   // Step D reversed: flight hits are starting points y; only faces the robot may lift off keep them as face
@@ -101,7 +102,7 @@ class BackProjector {
     src.keep_front = keep_front;
     src.face = face;
     if (face >= 0) src.walls = walls_[face];
-    absorb(fly(r_, src, reverse_cone_));
+    absorb(fly(reached_impl_, src, reverse_cone_));
   }
 
   void process_face(int fi) {
@@ -110,7 +111,7 @@ class BackProjector {
     work_.add_closure(fi, parts);
     for (const Points2& part : parts) backslide(fi, part);
     if (!lands_on_[fi]) return;
-    const FaceChart& chart = r_.charts[fi];
+    const FaceChart& chart = reached_impl_.charts[fi];
     for (const Points2& part : parts) {
       std::vector<Point3> source;
       for (const Point2& p : part) source.push_back(chart.lift(p));
@@ -121,12 +122,12 @@ class BackProjector {
   void process_edge(int ei) {
     ++steps_;
     const std::vector<EdgeInterval> ivs = work_.take_edge(ei);
-    const Edge& e = c_.edges()[ei];
-    const int id = nf_ + ei;
+    const Edge& e = cspace_.edges()[ei];
+    const int id = face_count_ + ei;
     work_.add_interval_ends(ei, ivs);
     // Step B reversed (a flat edge is no crease: its faces' wedges cover motion along it).
     if (!must_[id] && e.shape != EdgeShape::kFlat) {
-      const EdgeSliding es = edge_sliding(c_, id, v_, theta_v_);
+      const EdgeSliding es = edge_sliding(cspace_, id, v_, theta_v_);
       for (const EdgeInterval& iv : ivs) {
         if (es.toward_b) work_.add_interval(ei, 0, iv.t1);
         if (es.toward_a) work_.add_interval(ei, iv.t0, 1);
@@ -135,7 +136,7 @@ class BackProjector {
     for (const EdgeInterval& iv : ivs) {
       const Vec3 a = e.a + iv.t0 * (e.b - e.a), b = e.a + iv.t1 * (e.b - e.a);
       for (int f : e.faces) {
-        const FaceChart& chart = r_.charts[f];
+        const FaceChart& chart = reached_impl_.charts[f];
         Points2 seg;
         seg.reserve(2);
         seg.push_back(chart.project(a));
@@ -149,10 +150,10 @@ class BackProjector {
       // The straight segment from the edge into free space stays in front of one face at a convex edge (free
       // space is the union of the two fronts: one flight per front) and of both at a concave or flat one.
       if (e.shape == EdgeShape::kConvex) {
-        for (int f : e.faces) fly_back(source, {r_.charts[f].plane}, -1);
+        for (int f : e.faces) fly_back(source, {reached_impl_.charts[f].plane}, -1);
       } else if (e.shape == EdgeShape::kConcave || e.shape == EdgeShape::kFlat) {
         std::vector<Plane3> fronts;
-        for (int f : e.faces) fronts.push_back(r_.charts[f].plane);
+        for (int f : e.faces) fronts.push_back(reached_impl_.charts[f].plane);
         fly_back(source, fronts, -1);
       } else {
         fly_back(source, {}, -1);  // a non-manifold edge keeps no front, as the forward flight from it
@@ -163,24 +164,24 @@ class BackProjector {
   void process_vertex(int vi) {
     ++steps_;
     work_.take_vertex(vi);
-    const Vertex& vx = c_.vertices()[vi];
+    const Vertex& vx = cspace_.vertices()[vi];
     for (int e : vx.edges) {
-      const Edge& edge = c_.edges()[e - nf_];
+      const Edge& edge = cspace_.edges()[e - face_count_];
       if (must_[e] || edge.shape == EdgeShape::kFlat) continue;
-      const EdgeSliding es = edge_sliding(c_, e, v_, theta_v_);
-      if (edge.vertex_a == vx.id ? es.toward_a : es.toward_b) work_.add_interval(e - nf_, 0, 1);
+      const EdgeSliding es = edge_sliding(cspace_, e, v_, theta_v_);
+      if (edge.vertex_a == vx.id ? es.toward_a : es.toward_b) work_.add_interval(e - face_count_, 0, 1);
     }
-    for (int f : vx.faces) backslide(f, {r_.charts[f].project(vx.point)});
+    for (int f : vx.faces) backslide(f, {reached_impl_.charts[f].project(vx.point)});
     fly_back({exact(vx.point)}, {}, -1);  // as the forward flight from a vertex: no front is kept
   }
 
-  const CSpace& c_;
+  const CSpace& cspace_;
   const Vec3 v_;
   const double theta_v_;
   ReachedSet weak_;
-  ReachedSet::Impl& r_;
+  ReachedSet::Impl& reached_impl_;
   DamperWorklist work_;
-  int nf_ = 0, ne_ = 0, nv_ = 0, steps_ = 0;
+  int face_count_ = 0, edge_count_ = 0, vertex_count_ = 0, steps_ = 0;
   std::vector<bool> must_;
   std::vector<Sweep> sweeps_;
   std::vector<bool> lifts_off_, lands_on_;

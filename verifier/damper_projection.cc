@@ -37,51 +37,51 @@ class Projector {
  public:
   Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
             double stop_relative_speed, double contact_lift, double servo_coast)
-      : c_(lt.cspace),
+      : cspace_(lt.cspace),
         v_(v.normalized()),
         lift_(std::max(0.0, contact_lift)),
         coast_(std::max(0.0, servo_coast) * (1 + kCoastRelativeSlack)),
         kappa_(std::max(0.0, stop_relative_speed)),
         theta_v_(lt.task.uncertainty.theta_v),
         reached_(start),
-        r_(reached_.impl()),
-        work_(r_) {  // everything in the start is pending
-    nf_ = static_cast<int>(c_.faces().size());
-    ne_ = static_cast<int>(c_.edges().size());
-    nv_ = static_cast<int>(c_.vertices().size());
+        reached_impl_(reached_.impl()),
+        work_(reached_impl_) {  // everything in the start is pending
+    face_count_ = static_cast<int>(cspace_.faces().size());
+    edge_count_ = static_cast<int>(cspace_.edges().size());
+    vertex_count_ = static_cast<int>(cspace_.vertices().size());
     // The commanded speed is the reference speed (only the direction has an error), so a slide slower than
     // kappa times it has its velocity within asin(kappa) of the friction cone.
     const double stop_angle = std::asin(std::min(1.0, std::max(0.0, stop_relative_speed)));
-    for (int id = 0; id < c_.atom_count(); ++id) {
+    for (int id = 0; id < cspace_.atom_count(); ++id) {
       cls_.push_back(classify_damper(cones, id, v_, theta_v_));
       // Only a "never" atom can change class under the wider test.
       stops_.push_back(
           cls_.back() != StickClass::kNever ||
           (stop_angle > 0 && classify_damper(cones, id, v_, theta_v_, stop_angle) != StickClass::kNever));
     }
-    for (const Face& f : c_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, c_.scale()));
-    cone_ = flight_cone(v_, theta_v_, c_.scale());
+    for (const Face& f : cspace_.faces()) sweeps_.push_back(face_sweep(f, v_, theta_v_, cspace_.scale()));
+    cone_ = flight_cone(v_, theta_v_, cspace_.scale());
     for (const Vec3& ray : cone_.rays) cone_coast_.push_back(coast_ * ray.normalized());
-    for (int fi = 0; fi < nf_; ++fi) {
-      whole_face_.emplace_back(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
+    for (int fi = 0; fi < face_count_; ++fi) {
+      whole_face_.emplace_back(to_polygon(reached_impl_.face_polygon[fi]), reached_impl_.charts[fi].cell);
       sweep_holds_cone_.push_back(cls_[fi] != StickClass::kMust && sweep_holds_cone(fi));
     }
   }
 
   DamperProjection run() {
-    DamperProjection out{ReachedSet(c_), ReachedSet(c_)};
+    DamperProjection out{ReachedSet(cspace_), ReachedSet(cspace_)};
     const bool progress = work_.run(
         steps_, kMaxFixpointSteps, [&](int fi) { process_face(fi); }, [&](int ei) { process_edge(ei); },
         [&](int vi) { process_vertex(vi); });
     if (progress) {  // cap reached: every atom (sound, uninformative)
       out.fallback = true;
-      for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
+      for (int id = 0; id < cspace_.atom_count(); ++id) reached_.add_whole_atom(id);
     }
     out.termination = reached_.restricted(stops_);
     out.may_not_terminate = out.termination.empty();
     std::vector<bool> must(cls_.size());
     for (std::size_t id = 0; id < cls_.size(); ++id) must[id] = cls_[id] == StickClass::kMust;
-    out.slide_forever = damper_slide_forever_atoms(c_, reached_, v_, theta_v_, kappa_, must);
+    out.slide_forever = damper_slide_forever_atoms(cspace_, reached_, v_, theta_v_, kappa_, must);
     out.reached = std::move(reached_);
     out.steps = steps_;
     return out;
@@ -92,15 +92,15 @@ class Projector {
   void process_face(int fi) {
     ++steps_;
     const std::vector<Points2> parts = work_.take_face(fi);
-    const Face& face = c_.faces()[fi];
-    const FaceChart& chart = r_.charts[fi];
+    const Face& face = cspace_.faces()[fi];
+    const FaceChart& chart = reached_impl_.charts[fi];
     work_.add_closure(fi, parts);  // reached parts of the face's edges and corners (closed regions)
     if (cls_[fi] == StickClass::kMust) return;  // nothing slides or lifts off a must-stick face
     if (coast_ > 0) coast_over_rims(fi, parts);
     // A. Sliding (Buckley Alg 4.3): the swept wedge, clipped to the face.
     const Sweep& sw = sweeps_[fi];
     if (sw.whole) {
-      work_.add_region(fi, ChartRegion(to_polygon(r_.face_polygon[fi]), chart.cell));
+      work_.add_region(fi, ChartRegion(to_polygon(reached_impl_.face_polygon[fi]), chart.cell));
     } else if (!sw.none) {
       const Vector2 bp = chart.project_direction(sw.far * sw.b_plus);
       const Vector2 bm = chart.project_direction(sw.far * sw.b_minus);
@@ -110,7 +110,7 @@ class Projector {
           pts.push_back(p + bp);
           pts.push_back(p + bm);
         }
-        work_.add_convex(fi, clip(convex_hull(pts), r_.face_polygon[fi]));
+        work_.add_convex(fi, clip(convex_hull(pts), reached_impl_.face_polygon[fi]));
       }
     }
     // D. Flight, when some admissible velocity leaves the face (angle(v, n) < pi/2 + theta_v); only points in
@@ -121,15 +121,15 @@ class Projector {
       for (const Point2& p : part) src.vertices.push_back(chart.lift(p));
       src.keep_front.push_back(chart.plane);
       src.face = fi;
-      absorb(fly(r_, src, cone_));
+      absorb(fly(reached_impl_, src, cone_));
     }
   }
 
   void process_edge(int ei) {
     ++steps_;
     const std::vector<EdgeInterval> ivs = work_.take_edge(ei);
-    const Edge& e = c_.edges()[ei];
-    const int id = nf_ + ei;
+    const Edge& e = cspace_.edges()[ei];
+    const int id = face_count_ + ei;
     work_.add_interval_ends(ei, ivs);
     // The lift bands first: the robot may reach them on its way to the edge, whatever the edge's class.
     if (lift_ > 0 && e.shape == EdgeShape::kConcave) add_lift_bands(ei, ivs);
@@ -137,18 +137,20 @@ class Projector {
     // B. Sliding along the edge toward an end reaches the end. A flat edge (a cut between coplanar faces) is
     // no crease: motion along it is motion on the plane, covered by both faces' sliding wedges (the segment
     // seeds both faces below), so edge_sliding's coarser "any component along the edge" is not applied.
-    const EdgeSliding es = e.shape == EdgeShape::kFlat ? EdgeSliding{} : edge_sliding(c_, id, v_, theta_v_);
+    const EdgeSliding es =
+        e.shape == EdgeShape::kFlat ? EdgeSliding{} : edge_sliding(cspace_, id, v_, theta_v_);
     for (const EdgeInterval& iv : ivs) {
       if (es.toward_b) work_.add_interval(ei, iv.t0, 1);
       if (es.toward_a) work_.add_interval(ei, 0, iv.t1);
     }
     std::vector<Plane3> keep;
     if (e.shape == EdgeShape::kConcave || e.shape == EdgeShape::kFlat)
-      for (int f : e.faces) keep.push_back(r_.charts[f].plane);
+      for (int f : e.faces) keep.push_back(reached_impl_.charts[f].plane);
     for (const EdgeInterval& iv : ivs) {
       const Vec3 a = e.a + iv.t0 * (e.b - e.a), b = e.a + iv.t1 * (e.b - e.a);
       // Onto either adjacent face (over-approximation: the whole segment seeds both).
-      for (int f : e.faces) work_.add_segment(f, r_.charts[f].project(a), r_.charts[f].project(b));
+      for (int f : e.faces)
+        work_.add_segment(f, reached_impl_.charts[f].project(a), reached_impl_.charts[f].project(b));
       FlightSource src;
       src.vertices = {exact(a)};
       if (iv.t1 > iv.t0) src.vertices.push_back(exact(b));
@@ -157,13 +159,13 @@ class Projector {
         // fronts: a segment from the edge that ends behind both planes entered the obstacle. One flight per
         // front gives exactly that union.
         for (int f : e.faces) {
-          src.keep_front = {r_.charts[f].plane};
-          absorb(fly(r_, src, cone_), e.faces);
+          src.keep_front = {reached_impl_.charts[f].plane};
+          absorb(fly(reached_impl_, src, cone_), e.faces);
         }
         continue;
       }
       src.keep_front = keep;
-      absorb(fly(r_, src, cone_), e.faces);
+      absorb(fly(reached_impl_, src, cone_), e.faces);
     }
   }
 
@@ -176,21 +178,21 @@ class Projector {
   // edge, each strip's sweep reaches the edge lift tan(alpha) further along it, and the strips creep along
   // the edge; after kLiftStripRounds strips on an edge, the strip along the whole edge is taken at once.
   void add_lift_bands(int ei, const std::vector<EdgeInterval>& ivs) {
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     const bool whole = ++lift_strips_[ei] > kLiftStripRounds;
     for (int f : e.faces) {
       bool fed = false;
       for (int g : e.faces)
         if (g != f) fed = fed || slides_toward(g, e);
       if (!fed) continue;
-      const Face& face = c_.faces()[f];
+      const Face& face = cspace_.faces()[f];
       const Vec3 d = -outward_across(face, e);
-      const FaceChart& chart = r_.charts[f];
+      const FaceChart& chart = reached_impl_.charts[f];
       auto strip = [&](const Vec3& a, const Vec3& b) {
         const Points2 rect =
             convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
                          chart.project(Vec3(a + lift_ * d))});
-        work_.add_convex(f, clip(rect, r_.face_polygon[f]));
+        work_.add_convex(f, clip(rect, reached_impl_.face_polygon[f]));
       };
       if (whole) {
         strip(e.a, e.b);
@@ -216,9 +218,9 @@ class Projector {
   // toward edge e.
   bool slides_toward(int g, const Edge& e) const {
     const Sweep& sw = sweeps_[g];
-    if (cls_[g] == StickClass::kMust || sw.none || r_.faces[g].empty()) return false;
+    if (cls_[g] == StickClass::kMust || sw.none || reached_impl_.faces[g].empty()) return false;
     if (sw.whole) return true;
-    const Face& face = c_.faces()[g];
+    const Face& face = cspace_.faces()[g];
     const Vec3 m = outward_across(face, e);
     return sw.b_plus.dot(m) > 0 || sw.b_minus.dot(m) > 0;
   }
@@ -226,18 +228,18 @@ class Projector {
   void process_vertex(int vi) {
     ++steps_;
     work_.take_vertex(vi);
-    const Vertex& vx = c_.vertices()[vi];
-    if (cls_[nf_ + ne_ + vi] == StickClass::kMust) return;
+    const Vertex& vx = cspace_.vertices()[vi];
+    if (cls_[face_count_ + edge_count_ + vi] == StickClass::kMust) return;
     // C. Onto adjacent edges and faces, and flight.
     for (int e : vx.edges) {
-      const Edge& edge = c_.edges()[e - nf_];
+      const Edge& edge = cspace_.edges()[e - face_count_];
       const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
-      work_.add_interval(e - nf_, t, t);
+      work_.add_interval(e - face_count_, t, t);
     }
-    for (int f : vx.faces) work_.add_point(f, r_.charts[f].project(vx.point));
+    for (int f : vx.faces) work_.add_point(f, reached_impl_.charts[f].project(vx.point));
     FlightSource src;
     src.vertices = {exact(vx.point)};
-    absorb(fly(r_, src, cone_), vx.faces);
+    absorb(fly(reached_impl_, src, cone_), vx.faces);
   }
 
   // `no_coast`: the faces of the source edge or vertex, whose landings are not coasted; `departure`: the
@@ -266,7 +268,7 @@ class Projector {
   // longer interval each round, and the fixpoint would creep along the edge). After kCoastRounds growing
   // coasts on one face (coasts against the command can chain into cycles of landings), the whole face.
   void coast_after_landing(const FlightHit& h, const std::vector<Vec3>& departure) {
-    const FaceChart& chart = r_.charts[h.face];
+    const FaceChart& chart = reached_impl_.charts[h.face];
     if (coast_rounds_[h.face] > kCoastRounds) {
       work_.add_region(h.face, whole_face_[h.face]);
       return;
@@ -289,7 +291,7 @@ class Projector {
         pts.push_back(p);
         for (const Vec3& d : pattern) pts.push_back(p + chart.project_direction(d));
       }
-      grew = work_.add_convex(h.face, clip(convex_hull(pts), r_.face_polygon[h.face]));
+      grew = work_.add_convex(h.face, clip(convex_hull(pts), reached_impl_.face_polygon[h.face]));
     }
     if (grew) ++coast_rounds_[h.face];
   }
@@ -304,10 +306,10 @@ class Projector {
   // that coasts along the rim, lands on the other face and reaches the edge again), the flights after
   // kCoastRounds start from the whole edge.
   void coast_over_rims(int fi, const std::vector<Points2>& parts) {
-    const Face& face = c_.faces()[fi];
-    const FaceChart& chart = r_.charts[fi];
+    const Face& face = cspace_.faces()[fi];
+    const FaceChart& chart = reached_impl_.charts[fi];
     for (int e : face.edges) {
-      const Edge& edge = c_.edges()[e - nf_];
+      const Edge& edge = cspace_.edges()[e - face_count_];
       if (edge.shape != EdgeShape::kConvex || edge.faces.size() != 2 || !slides_toward(fi, edge)) continue;
       // One prism over the hull of the parts' rim intervals.
       double s0 = 1, s1 = 0;
@@ -337,14 +339,14 @@ class Projector {
           if (lift_ > 0) src.vertices.push_back(exact(Vec3(q + s + lift_ * face.normal)));
         }
       for (int g : edge.faces) {
-        src.keep_front = {r_.charts[g].plane};
+        src.keep_front = {reached_impl_.charts[g].plane};
         // A segment or point on the rim's own faces is the rim itself (the prism's points at the rim), not a
         // landing: coasting it would feed the rim a longer interval each round and creep along the edge. So
         // is a sliver along the rim's line (the segment rounded outward to the region grid: every vertex
         // within kRimLineRelativeTolerance of the line). A landing with area beyond it (the command turning
         // the robot back onto a face) is coasted.
         std::vector<FlightHit> rim, landings;
-        for (FlightHit& h : fly(r_, src, cone_)) {
+        for (FlightHit& h : fly(reached_impl_, src, cone_)) {
           const bool own = std::find(edge.faces.begin(), edge.faces.end(), h.face) != edge.faces.end();
           (own && on_edge_line(h, edge) ? rim : landings).push_back(std::move(h));
         }
@@ -359,8 +361,8 @@ class Projector {
   bool on_edge_line(const FlightHit& h, const Edge& edge) const {
     const Vec3 d = (edge.b - edge.a).normalized();
     const auto near = [&](const Point2& p) {
-      const Vec3 q = r_.charts[h.face].lift_double(p) - edge.a;
-      return (q - q.dot(d) * d).norm() <= kRimLineRelativeTolerance * c_.scale();
+      const Vec3 q = reached_impl_.charts[h.face].lift_double(p) - edge.a;
+      return (q - q.dot(d) * d).norm() <= kRimLineRelativeTolerance * cspace_.scale();
     };
     if (!std::all_of(h.lower.begin(), h.lower.end(), near)) return false;
     for (const PolygonWithHoles2& p : h.region.polygons_with_holes()) {
@@ -379,7 +381,7 @@ class Projector {
     const Sweep& sw = sweeps_[fi];
     if (sw.whole) return true;
     if (sw.none) return false;
-    const Vec3& n = c_.faces()[fi].normal;
+    const Vec3& n = cspace_.faces()[fi].normal;
     const Vec3 axis = (sw.b_plus + sw.b_minus).normalized();
     const double cos_alpha = sw.b_plus.dot(axis);
     for (const Vec3& ray : cone_.rays) {
@@ -399,7 +401,7 @@ class Projector {
   // or a wedge wider than 2 pi / 3 (R > 2r): only velocities in the outward half-disk leave over the edge,
   // and it lies in the triangle -2r t, 2r t, 2r out (|x| + y <= 2r on it).
   std::vector<Vec3> coast_sector(int fi, const Edge& edge) const {
-    const Face& face = c_.faces()[fi];
+    const Face& face = cspace_.faces()[fi];
     const Sweep& sw = sweeps_[fi];
     const double r = coast_;
     const Vec3 axis = sw.whole ? Vec3::Zero() : Vec3((sw.b_plus + sw.b_minus).normalized());
@@ -412,16 +414,16 @@ class Projector {
     return {Vec3::Zero(), (r / cos_alpha) * sw.b_minus, (r / cos_alpha) * sw.b_plus};
   }
 
-  const CSpace& c_;
+  const CSpace& cspace_;
   Vec3 v_;
   double lift_;   // contact lift (task units)
   double coast_;  // servo coast tau V (task units), with kCoastRelativeSlack
   double kappa_;  // the stop rule's relative speed
   double theta_v_;
   ReachedSet reached_;
-  ReachedSet::Impl& r_;
+  ReachedSet::Impl& reached_impl_;
   DamperWorklist work_;
-  int nf_ = 0, ne_ = 0, nv_ = 0;
+  int face_count_ = 0, edge_count_ = 0, vertex_count_ = 0;
   std::vector<StickClass> cls_;
   std::vector<bool> stops_;  // the atom may stop the motion: it may stick or slide slower than the stop rule
   std::vector<Sweep> sweeps_;

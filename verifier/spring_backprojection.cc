@@ -137,22 +137,22 @@ LineReach line_reach(const std::vector<Vec3>& part, const Vec3& focus, double r,
 class SpringBackProjector {
  public:
   SpringBackProjector(const LoadedTask& lt, const ReachedSet& from, const Vec3& p)
-      : c_(lt.cspace),
+      : cspace_(lt.cspace),
         u_(lt.task.uncertainty),
         p_(p),
         base_(from.impl()),
         weak_(from),
-        r_(weak_.impl()),
-        work_(r_) {
+        reached_impl_(weak_.impl()),
+        work_(reached_impl_) {
     // The forward projection's tubes are circumscribed polygons of the eps_t and eps_o disks
     // (kSpringDiskSides sides, radii grown by kSpringRelativeSlack): the backward reach uses the same outer
     // radii, so that the forward projection of the complement keeps clear of W.
     const double outer = (1 + kSpringRelativeSlack) / std::cos(M_PI / kSpringDiskSides);
     eps_t_ = eps_t(u_) * outer;
     eps_o_ = eps_o(u_) * outer;
-    slack_ = kReachRelativeSlack * c_.scale();
+    slack_ = kReachRelativeSlack * cspace_.scale();
     tan_v_ = std::tan(u_.theta_v);
-    for (const Face& f : c_.faces()) {
+    for (const Face& f : cspace_.faces()) {
       const int fi = f.id;
       const double depth = f.offset - f.normal.dot(p_);  // > 0: p behind the face's plane
       const Vec3 center = p_ + depth * f.normal;         // p', p's projection on the plane
@@ -161,27 +161,28 @@ class SpringBackProjector {
       for (const Vec3& q : f.polygon) far = std::max(far, (q - center).norm());
       // forward_project_spring's may_stay: somewhere on the face some pull does not point into free space.
       may_stay_.push_back(
-          !(-depth - u_.eps_s > tan_v_ * (far + u_.eps_s) + kLeaveDecisionMargin * c_.scale()));
+          !(-depth - u_.eps_s > tan_v_ * (far + u_.eps_s) + kLeaveDecisionMargin * cspace_.scale()));
       // Its no-leave disk: strictly inside it every pull points into the obstacle (no flight from there).
       // With theta_v = 0 it is the whole face when p lies more than eps_s behind it, else none.
-      const double pull_in = depth - u_.eps_s - kLeaveDecisionMargin * c_.scale();
-      const double no_leave = tan_v_ > 0
-                                  ? (depth - u_.eps_s) / tan_v_ - u_.eps_s - kLeaveDecisionMargin * c_.scale()
-                                  : (pull_in > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+      const double pull_in = depth - u_.eps_s - kLeaveDecisionMargin * cspace_.scale();
+      const double no_leave =
+          tan_v_ > 0 ? (depth - u_.eps_s) / tan_v_ - u_.eps_s - kLeaveDecisionMargin * cspace_.scale()
+                     : (pull_in > 0 ? std::numeric_limits<double>::infinity() : 0.0);
       ChartRegion stay;
       if (std::isinf(no_leave)) {
-        stay = ChartRegion(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
-      } else if (no_leave > 4 * r_.charts[fi].cell) {
-        const Points2 disk = clip(chart_disk(r_, fi, center, no_leave, false), r_.face_polygon[fi]);
-        if (disk.size() >= 3) stay = ChartRegion(to_polygon(disk), r_.charts[fi].cell);
+        stay = ChartRegion(to_polygon(reached_impl_.face_polygon[fi]), reached_impl_.charts[fi].cell);
+      } else if (no_leave > 4 * reached_impl_.charts[fi].cell) {
+        const Points2 disk =
+            clip(chart_disk(reached_impl_, fi, center, no_leave, false), reached_impl_.face_polygon[fi]);
+        if (disk.size() >= 3) stay = ChartRegion(to_polygon(disk), reached_impl_.charts[fi].cell);
       }
       no_leave_.push_back(std::move(stay));
     }
     // Faces in one plane (same unit normal and offset up to the surface tolerance), each with itself.
     const double tol = lt.surface_tolerance();
-    for (const Face& f : c_.faces()) {
+    for (const Face& f : cspace_.faces()) {
       plane_faces_.emplace_back();
-      for (const Face& g : c_.faces())
+      for (const Face& g : cspace_.faces())
         if (f.normal.dot(g.normal) > 1 - 1e-12 && std::abs(f.offset - g.offset) <= tol)
           plane_faces_.back().push_back(g.id);
     }
@@ -189,11 +190,11 @@ class SpringBackProjector {
 
   WeakBackprojection run() {
     // The base's own face parts start slides (process_face restarts slides only where the robot may leave).
-    for (int fi = 0; fi < static_cast<int>(c_.faces().size()); ++fi)
+    for (int fi = 0; fi < static_cast<int>(cspace_.faces().size()); ++fi)
       for (const Points2& part : base_parts(fi)) backslide(fi, lifted(fi, part));
     // So do its intervals on flat edges (process_edge starts no slides from flat edges).
-    for (std::size_t ei = 0; ei < c_.edges().size(); ++ei) {
-      const Edge& e = c_.edges()[ei];
+    for (std::size_t ei = 0; ei < cspace_.edges().size(); ++ei) {
+      const Edge& e = cspace_.edges()[ei];
       if (e.shape != EdgeShape::kFlat) continue;
       for (const EdgeInterval& iv : base_.edges[ei])
         for (int f : e.faces) backslide(f, {e.a + iv.t0 * (e.b - e.a), e.a + iv.t1 * (e.b - e.a)});
@@ -208,16 +209,16 @@ class SpringBackProjector {
   // The largest distance from x to a vertex of the C-space (its bounding box's corners among them).
   double farthest(const Vec3& x) const {
     double d = 0;
-    for (const Vertex& v : c_.vertices()) d = std::max(d, (v.point - x).norm());
+    for (const Vertex& v : cspace_.vertices()) d = std::max(d, (v.point - x).norm());
     return d;
   }
 
   // Face fi ∩ reach, a convex chart polygon (empty: none). Half-spaces that hold the whole face or miss it by
   // far are decided in doubles; the rest cut the face exactly.
   Points2 clip_face(int fi, const LineReach& reach) const {
-    Points2 poly = r_.face_polygon[fi];
+    Points2 poly = reached_impl_.face_polygon[fi];
     if (reach.everything) return poly;
-    const Face& f = c_.faces()[fi];
+    const Face& f = cspace_.faces()[fi];
     for (const HalfSpace& h : reach.halfspaces) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (const Vec3& q : f.polygon) {
@@ -227,7 +228,7 @@ class SpringBackProjector {
       if (hi <= 0) continue;
       if (lo > slack_) return {};
       const Plane3 plane(-h.normal.x(), -h.normal.y(), -h.normal.z(), h.offset);
-      poly = clip(poly, restrict_to_chart(plane, r_.charts[fi]));
+      poly = clip(poly, restrict_to_chart(plane, reached_impl_.charts[fi]));
       if (poly.empty()) return {};
     }
     return poly;
@@ -236,7 +237,7 @@ class SpringBackProjector {
   // The parameter interval of edge ei inside reach, rounded outward.
   std::optional<std::pair<double, double>> clip_edge(int ei, const LineReach& reach) const {
     if (reach.everything) return std::make_pair(0.0, 1.0);
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     double t0 = 0, t1 = 1;
     for (const HalfSpace& h : reach.halfspaces) {
       const double a = h.normal.dot(e.a) - h.offset, b = h.normal.dot(e.b) - h.offset;
@@ -262,21 +263,21 @@ class SpringBackProjector {
   // lands on it: spring_fly's source face; -1 for an edge or a vertex part).
   void fly_back(const std::vector<Vec3>& part, int face) {
     const LineReach reach = line_reach(part, p_, eps_t_, eps_o_, slack_, farthest(p_));
-    for (int fi = 0; fi < static_cast<int>(c_.faces().size()); ++fi) {
+    for (int fi = 0; fi < static_cast<int>(cspace_.faces().size()); ++fi) {
       if (fi == face) continue;
       const Points2 piece = clip_face(fi, reach);
       if (piece.size() >= 3 && !no_leave_[fi].is_empty()) {
-        ChartRegion region(to_polygon(piece), r_.charts[fi].cell);
+        ChartRegion region(to_polygon(piece), reached_impl_.charts[fi].cell);
         region.difference(no_leave_[fi]);
         if (!region.is_empty()) work_.add_region(fi, region);  // the face's edges: clip_edge below
       } else if (!piece.empty()) {
         work_.add_convex(fi, piece);
       }
     }
-    for (int ei = 0; ei < static_cast<int>(c_.edges().size()); ++ei)
+    for (int ei = 0; ei < static_cast<int>(cspace_.edges().size()); ++ei)
       if (const auto iv = clip_edge(ei, reach)) work_.add_interval(ei, iv->first, iv->second);
-    for (std::size_t vi = 0; vi < c_.vertices().size(); ++vi)
-      if (reach.contains(c_.vertices()[vi].point)) work_.add_vertex(static_cast<int>(vi));
+    for (std::size_t vi = 0; vi < cspace_.vertices().size(); ++vi)
+      if (reach.contains(cspace_.vertices()[vi].point)) work_.add_vertex(static_cast<int>(vi));
   }
 
   // Sliding on face fi reversed: the points whose straight slide toward p' passes within r of part, on fi and
@@ -296,13 +297,14 @@ class SpringBackProjector {
   // hi) = (tp − a, tp + a): from below it stops sliding at lo, from above at hi. Backward: the parameters
   // whose slide meets [t0, t1].
   void backslide_edge(int ei, double t0, double t1) {
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     if (e.shape == EdgeShape::kFlat) return;  // motion on the plane: the faces' rules
     const Vec3 d = e.b - e.a;
     const double len = d.norm();
     const double tp = (p_ - e.a).dot(d) / (len * len);
     const double w = edge_either_way_halfwidth(e, p_, u_, eps_o(u_)) / len + 2 * kEdgeParamSlack;
-    const double a = edge_must_leave_halfwidth(c_, e, tp, p_, u_, kLeaveDecisionMargin * c_.scale());
+    const double a =
+        edge_must_leave_halfwidth(cspace_, e, tp, p_, u_, kLeaveDecisionMargin * cspace_.scale());
     if (std::isinf(a)) return;  // the robot leaves the edge everywhere
     const auto add = [&](double lo, double hi) {
       lo = std::max(0.0, lo - kEdgeParamSlack), hi = std::min(1.0, hi + kEdgeParamSlack);
@@ -322,7 +324,7 @@ class SpringBackProjector {
 
   std::vector<Vec3> lifted(int fi, const Points2& part) const {
     std::vector<Vec3> pts;
-    for (const Point2& q : part) pts.push_back(r_.charts[fi].lift_double(q));
+    for (const Point2& q : part) pts.push_back(reached_impl_.charts[fi].lift_double(q));
     return pts;
   }
 
@@ -343,7 +345,7 @@ class SpringBackProjector {
         if (no_leave_[fi].oriented_side(q) != CGAL::ON_POSITIVE_SIDE) return {part};
       return {};
     }
-    ChartRegion region(to_polygon(part), r_.charts[fi].cell);
+    ChartRegion region(to_polygon(part), reached_impl_.charts[fi].cell);
     region.difference(no_leave_[fi]);
     return region.is_empty() ? std::vector<Points2>{} : convex_pieces(region);
   }
@@ -361,7 +363,7 @@ class SpringBackProjector {
   void process_edge(int ei) {
     ++steps_;
     const std::vector<EdgeInterval> ivs = work_.take_edge(ei);
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     work_.add_interval_ends(ei, ivs);
     for (const EdgeInterval& iv : ivs) {
       const std::vector<Vec3> seg = {e.a + iv.t0 * (e.b - e.a), e.a + iv.t1 * (e.b - e.a)};
@@ -377,10 +379,10 @@ class SpringBackProjector {
   void process_vertex(int vi) {
     ++steps_;
     work_.take_vertex(vi);
-    const Vertex& vx = c_.vertices()[vi];
-    const int nf = static_cast<int>(c_.faces().size());
+    const Vertex& vx = cspace_.vertices()[vi];
+    const int nf = static_cast<int>(cspace_.faces().size());
     for (int e : vx.edges) {
-      const Edge& edge = c_.edges()[e - nf];
+      const Edge& edge = cspace_.edges()[e - nf];
       const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
       backslide_edge(e - nf, t, t);
     }
@@ -388,12 +390,12 @@ class SpringBackProjector {
     fly_back({vx.point}, -1);
   }
 
-  const CSpace& c_;
+  const CSpace& cspace_;
   const Uncertainty u_;
   const Vec3 p_;
   const ReachedSet::Impl& base_;
   ReachedSet weak_;
-  ReachedSet::Impl& r_;
+  ReachedSet::Impl& reached_impl_;
   DamperWorklist work_;
   double eps_t_ = 0, eps_o_ = 0, slack_ = 0, tan_v_ = 0;
   int steps_ = 0;

@@ -62,7 +62,7 @@ class SpringProjector {
  public:
   SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model,
                   double stop_relative_speed, double contact_lift)
-      : c_(lt.cspace),
+      : cspace_(lt.cspace),
         u_(lt.task.uncertainty),
         p_(p),
         model_(model),
@@ -72,25 +72,25 @@ class SpringProjector {
         start_(start),
         kappa_(std::max(0.0, stop_relative_speed)),
         lift_(std::max(0.0, contact_lift)),
-        reached_(c_),
-        r_(reached_.impl()) {
+        reached_(cspace_),
+        reached_impl_(reached_.impl()) {
     if (model_ == SpringModel::kVelocity) {
-      const double reach = velocity_reach_bound(c_, start, p_, u_);
-      vm_ = {p_, u_, reach, velocity_invariant_half_spaces(c_, start, p_, u_, reach)};
+      const double reach = velocity_reach_bound(cspace_, start, p_, u_);
+      velocity_ = {p_, u_, reach, velocity_invariant_half_spaces(cspace_, start, p_, u_, reach)};
       slow_radius_ = slow_stop_radius(start, p_, u_, stop_relative_speed);
     }
     // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep
     // eps_s).
     Uncertainty u_weak = u_;
     u_weak.eps_s += slow_radius_;
-    nf_ = static_cast<int>(c_.faces().size());
-    ne_ = static_cast<int>(c_.edges().size());
-    nv_ = static_cast<int>(c_.vertices().size());
-    face_.resize(nf_);
-    edge_.resize(ne_);
-    pend_vertex_.assign(nv_, 0);
-    for (int fi = 0; fi < nf_; ++fi) {
-      const Face& f = c_.faces()[fi];
+    face_count_ = static_cast<int>(cspace_.faces().size());
+    edge_count_ = static_cast<int>(cspace_.edges().size());
+    vertex_count_ = static_cast<int>(cspace_.vertices().size());
+    face_.resize(face_count_);
+    edge_.resize(edge_count_);
+    pend_vertex_.assign(vertex_count_, 0);
+    for (int fi = 0; fi < face_count_; ++fi) {
+      const Face& f = cspace_.faces()[fi];
       const FaceStickingRadii rad = face_sticking_radii(f, p_, u_);
       const double weak_radius = slow_radius_ > 0 ? face_sticking_radii(f, p_, u_weak).weak : rad.weak;
       FaceState& state = face_[fi];
@@ -101,13 +101,13 @@ class SpringProjector {
       if (rad.strong > 0) {
         // Pulled in by 4 grid cells (2 in the chart after its projection's shrink of up to 1/sqrt 3), more
         // than the region's outward rounding of what is subtracted.
-        const double pull_in = 4 * r_.charts[fi].cell;
-        const Points2 s =
-            rad.strong > pull_in
-                ? clip(chart_disk(r_, fi, rad.center, rad.strong - pull_in, false), r_.face_polygon[fi])
-                : Points2{};
+        const double pull_in = 4 * reached_impl_.charts[fi].cell;
+        const Points2 s = rad.strong > pull_in
+                              ? clip(chart_disk(reached_impl_, fi, rad.center, rad.strong - pull_in, false),
+                                     reached_impl_.face_polygon[fi])
+                              : Points2{};
         if (s.size() >= 3) {
-          strong = ChartRegion(to_polygon(s), r_.charts[fi].cell);
+          strong = ChartRegion(to_polygon(s), reached_impl_.charts[fi].cell);
           strong_poly = s;
         }
       }
@@ -116,16 +116,17 @@ class SpringProjector {
       state.no_leave = inner_disk_set(fi, rad.center, no_leave_radius(fi));
       Points2 w;
       if (std::isinf(weak_radius))
-        w = r_.face_polygon[fi];
+        w = reached_impl_.face_polygon[fi];
       else if (weak_radius >= 0)
-        w = clip(chart_disk(r_, fi, rad.center, weak_radius, true), r_.face_polygon[fi]);
+        w = clip(chart_disk(reached_impl_, fi, rad.center, weak_radius, true),
+                 reached_impl_.face_polygon[fi]);
       state.weak = w;
       state.strong = std::move(strong);
     }
-    for (int id = nf_; id < c_.atom_count(); ++id) {
+    for (int id = face_count_; id < cspace_.atom_count(); ++id) {
       SpringStickingRegions reg;
-      reg.strong = spring_strong_regions(c_, id, u_);
-      const bool weak = spring_weak_region(c_, id, slow_radius_ > 0 ? u_weak : u_).contains(p_);
+      reg.strong = spring_strong_regions(cspace_, id, u_);
+      const bool weak = spring_weak_region(cspace_, id, slow_radius_ > 0 ? u_weak : u_).contains(p_);
       // The velocity model also tests the force cone against the atom's cone directly (both are sound, so
       // both must allow sticking).
       weak_atom_.push_back(weak && (model_ != SpringModel::kVelocity || velocity_may_stick(id)));
@@ -133,21 +134,21 @@ class SpringProjector {
     }
     // The start: entries on faces, new intervals and vertices.
     const ReachedSet::Impl& s = start.impl();
-    for (int fi = 0; fi < nf_; ++fi) {
+    for (int fi = 0; fi < face_count_; ++fi) {
       if (!s.faces[fi].region.is_empty()) add_entry_region(fi, s.faces[fi].region);
       for (const Segment2& seg : s.faces[fi].segments) add_entry_lower(fi, {seg.source(), seg.target()});
       for (const Point2& q : s.faces[fi].points) add_entry_lower(fi, {q});
     }
-    for (int ei = 0; ei < ne_; ++ei)
+    for (int ei = 0; ei < edge_count_; ++ei)
       for (const EdgeInterval& iv : s.edges[ei]) add_interval(ei, iv.t0, iv.t1);
-    for (int vi = 0; vi < nv_; ++vi)
+    for (int vi = 0; vi < vertex_count_; ++vi)
       if (s.vertices[vi]) add_vertex(vi);
   }
 
   SpringProjection run() {
-    SpringProjection out{ReachedSet(c_), ReachedSet(c_)};
+    SpringProjection out{ReachedSet(cspace_), ReachedSet(cspace_)};
     const bool progress = sweep_until_stable(
-        nf_, ne_, nv_, steps_, kMaxSpringFixpointSteps,
+        face_count_, edge_count_, vertex_count_, steps_, kMaxSpringFixpointSteps,
         [&](int fi) {
           return !face_[fi].pending_entry.is_empty() || !face_[fi].pending_entry_lower.empty() ||
                  !face_[fi].pending_new.is_empty() || !face_[fi].pending_new_lower.empty();
@@ -158,17 +159,17 @@ class SpringProjector {
     if (progress) {
       out.fallback = true;
       flew_ = true;
-      for (int id = 0; id < c_.atom_count(); ++id) reached_.add_whole_atom(id);
+      for (int id = 0; id < cspace_.atom_count(); ++id) reached_.add_whole_atom(id);
     }
     out.termination = termination();
     out.free_radius = std::max(spring_rest_radius(u_), u_.eps_s + slow_radius_);
     out.free_center = p_;
     out.free_termination = flew_ && rest_ball_meets_free(out.free_radius);
     out.may_not_terminate = out.termination.empty() && !out.free_termination;
-    std::vector<bool> strong(static_cast<std::size_t>(c_.atom_count()), false);
+    std::vector<bool> strong(static_cast<std::size_t>(cspace_.atom_count()), false);
     for (std::size_t k = 0; k < strong_atom_.size(); ++k)
-      strong[static_cast<std::size_t>(nf_) + k] = strong_atom_[k];
-    out.slide_forever = spring_slide_forever_atoms(c_, reached_, start_, p_, u_, kappa_, strong);
+      strong[static_cast<std::size_t>(face_count_) + k] = strong_atom_[k];
+    out.slide_forever = spring_slide_forever_atoms(cspace_, reached_, start_, p_, u_, kappa_, strong);
     out.reached = std::move(reached_);
     out.steps = steps_;
     out.widened = widened_;
@@ -184,7 +185,7 @@ class SpringProjector {
   // vertices, whose three or more cones rotated by theta_v can surround the origin (e.g. mu = .48,
   // theta_v = .25 at a corner of three orthogonal faces) although the sum widened by theta_v is pointed.
   bool velocity_may_stick(int id) const {
-    const std::vector<Vec3> pts = atom_points(c_, id);
+    const std::vector<Vec3> pts = atom_points(cspace_, id);
     Vec3 m = Vec3::Zero();
     for (const Vec3& x : pts) m += x;
     m /= static_cast<double>(pts.size());
@@ -206,7 +207,7 @@ class SpringProjector {
     const double half =
         (spread + u_.theta_v + std::asin(std::min(1.0, r / dist))) * (1 + kSpringRelativeSlack);
     if (half >= std::numbers::pi / 2) return true;  // not a pointed cone: no bound
-    return atom_friction_cone(c_, id).may_intersect_cone(CircularCone{axis, half});
+    return atom_friction_cone(cspace_, id).may_intersect_cone(CircularCone{axis, half});
   }
 
   // ---- adding ----
@@ -220,7 +221,7 @@ class SpringProjector {
   }
   void add_reached_region(int fi, const ChartRegion& part) {
     ChartRegion added;
-    if (!r_.add_region(fi, part, &added)) return;
+    if (!reached_impl_.add_region(fi, part, &added)) return;
     face_[fi].pending_new.join(added);
     const int rounds = grew_this_round(face_[fi].growth);
     if (rounds == kSpringWideningRounds) {  // widening, first stage: each region component's convex hull
@@ -228,24 +229,27 @@ class SpringProjector {
       // Per component (outer boundary), not one hull of everything: a face may hold separate parts far
       // apart (landings below a rim and slides near the bottom), whose common hull would fill the gap.
       std::vector<PolygonWithHoles2> components;
-      r_.faces[fi].region.polygons_with_holes(std::back_inserter(components));
+      reached_impl_.faces[fi].region.polygons_with_holes(std::back_inserter(components));
       std::vector<Polygon2> hulls;
       for (const PolygonWithHoles2& c : components) {
         const Points2 hull =
             convex_hull(Points2(c.outer_boundary().vertices_begin(), c.outer_boundary().vertices_end()));
         if (hull.size() >= 3) hulls.push_back(to_polygon(hull));
       }
-      const ChartRegion filled = union_of(hulls, r_.charts[fi].cell);
+      const ChartRegion filled = union_of(hulls, reached_impl_.charts[fi].cell);
       if (!filled.is_empty()) add_reached_region(fi, filled);
     } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole face (a superset)
       // The velocity model bounds every point of the motion by the reach ball: the face's part inside it.
-      const Points2 whole =
-          model_ == SpringModel::kVelocity ? velocity_reach_section(r_, fi, vm_) : r_.face_polygon[fi];
-      if (whole.size() >= 3) add_reached_region(fi, ChartRegion(to_polygon(whole), r_.charts[fi].cell));
+      const Points2 whole = model_ == SpringModel::kVelocity
+                                ? velocity_reach_section(reached_impl_, fi, velocity_)
+                                : reached_impl_.face_polygon[fi];
+      if (whole.size() >= 3)
+        add_reached_region(fi, ChartRegion(to_polygon(whole), reached_impl_.charts[fi].cell));
     }
   }
   void add_reached_lower(int fi, const Points2& pts) {
-    const bool fresh = pts.size() == 2 ? r_.add_segment(fi, pts[0], pts[1]) : r_.add_point(fi, pts[0]);
+    const bool fresh =
+        pts.size() == 2 ? reached_impl_.add_segment(fi, pts[0], pts[1]) : reached_impl_.add_point(fi, pts[0]);
     if (fresh) face_[fi].pending_new_lower.push_back(pts);
   }
   void add_entry_region(int fi, const ChartRegion& part) {
@@ -267,9 +271,9 @@ class SpringProjector {
   // The velocity model's invariant half-spaces cut an edge interval (false: nothing of it is reachable).
   bool within_bounds(int ei, double* t0, double* t1) const {
     if (model_ != SpringModel::kVelocity) return true;
-    const Edge& e = c_.edges()[ei];
-    const double tol = kSpringRelativeSlack * c_.scale();
-    for (const HalfSpace& hs : vm_.bounds) {
+    const Edge& e = cspace_.edges()[ei];
+    const double tol = kSpringRelativeSlack * cspace_.scale();
+    for (const HalfSpace& hs : velocity_.bounds) {
       const double sa = hs.normal.dot(e.a), sb = hs.normal.dot(e.b), lim = hs.offset + tol;
       if (std::abs(sb - sa) <= tol) {
         if (std::min(sa, sb) > lim) return false;
@@ -286,7 +290,7 @@ class SpringProjector {
   void add_interval(int ei, double t0, double t1) {
     if (!within_bounds(ei, &t0, &t1)) return;
     std::vector<EdgeInterval> added;
-    const double fresh = r_.add_interval(ei, t0, t1, &added);
+    const double fresh = reached_impl_.add_interval(ei, t0, t1, &added);
     if (fresh < 0) return;
     if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
       for (const EdgeInterval& iv : added) edge_[ei].pending.push_back(iv);
@@ -294,15 +298,16 @@ class SpringProjector {
     // Widening, first stage: the hull [min t0, max t1] of what the edge holds.
     if (rounds == kSpringWideningRounds) {
       ++widened_;
-      const std::vector<EdgeInterval>& held = r_.edges[ei];
+      const std::vector<EdgeInterval>& held = reached_impl_.edges[ei];
       if (!held.empty()) add_interval(ei, held.front().t0, held.back().t1);
     } else if (rounds == 2 * kSpringWideningRounds) {  // second stage: the whole edge
       if (model_ != SpringModel::kVelocity) {
         add_interval(ei, 0, 1);
       } else {  // the part within the reach ball: |a + t d − p| <= reach, rounded outward
-        const Edge& e = c_.edges()[ei];
+        const Edge& e = cspace_.edges()[ei];
         const Vec3 d = e.b - e.a, w = e.a - p_;
-        const double A = d.squaredNorm(), B = 2 * d.dot(w), C = w.squaredNorm() - vm_.reach * vm_.reach;
+        const double A = d.squaredNorm(), B = 2 * d.dot(w),
+                     C = w.squaredNorm() - velocity_.reach * velocity_.reach;
         const double disc = B * B - 4 * A * C;
         if (disc >= 0) {
           const double root = std::sqrt(disc);
@@ -313,7 +318,7 @@ class SpringProjector {
     }
   }
   void add_vertex(int vi) {
-    if (r_.add_vertex(vi)) pend_vertex_[vi] = 1;
+    if (reached_impl_.add_vertex(vi)) pend_vertex_[vi] = 1;
   }
   // ---- leaving and staying on a face ----
   // With x̂ within eps_s of x on the face, p − x̂ has normal part (toward free space) <= −depth + eps_s and
@@ -322,22 +327,22 @@ class SpringProjector {
   // eps_s) > tan(theta_v) (d + eps_s). Compared with a relative margin that favours moving.
   bool may_leave(int fi, const std::vector<Vec3>& pts) const {
     return !(face_[fi].depth - u_.eps_s >
-             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * cspace_.scale());
   }
   bool may_stay(int fi, const std::vector<Vec3>& pts) const {
     return !(-face_[fi].depth - u_.eps_s >
-             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * c_.scale());
+             tan_v_ * (max_dist(fi, pts) + u_.eps_s) + kDecisionMargin * cspace_.scale());
   }
   // From the edge onto face fi (m = the in-face unit normal of the edge pointing into the face): where
   // x -> (p − x) . m + eps_s + sin(theta_v) (|p − x| + eps_s) + decision margin is < 0, (p − x̂) . m <
   // −sin(theta_v) |p − x̂| for every sensed x̂ and the robot cannot enter. Convex along the edge.
   std::function<double(const Vec3&)> enter_margin(const Edge& e, int fi) const {
-    const Face& f = c_.faces()[fi];
+    const Face& f = cspace_.faces()[fi];
     Vec3 m = f.normal.cross(e.b - e.a).normalized();
     Vec3 centroid = Vec3::Zero();
     for (const Vec3& q : f.polygon) centroid += q / static_cast<double>(f.polygon.size());
     if ((centroid - e.a).dot(m) < 0) m = -m;
-    const double sv = std::sin(u_.theta_v), eps = u_.eps_s, margin = kDecisionMargin * c_.scale();
+    const double sv = std::sin(u_.theta_v), eps = u_.eps_s, margin = kDecisionMargin * cspace_.scale();
     const Vec3 p = p_;
     return [p, m, sv, eps, margin](const Vec3& x) {
       return (p - x).dot(m) + eps + sv * ((p - x).norm() + eps) + margin;
@@ -389,11 +394,12 @@ class SpringProjector {
   // The part of the face inside a polygon inscribed in that disk, shrunk by the decision margin (what is
   // subtracted is inside the open disk: sound).
   ChartRegion inner_disk_set(int fi, const Vec3& center, double radius) const {
-    if (!std::isfinite(radius)) return ChartRegion(to_polygon(r_.face_polygon[fi]), r_.charts[fi].cell);
-    const double r = radius - kDecisionMargin * c_.scale();
+    if (!std::isfinite(radius))
+      return ChartRegion(to_polygon(reached_impl_.face_polygon[fi]), reached_impl_.charts[fi].cell);
+    const double r = radius - kDecisionMargin * cspace_.scale();
     if (r <= 0) return ChartRegion();
-    const Points2 d = clip(chart_disk(r_, fi, center, r, false), r_.face_polygon[fi]);
-    return d.size() >= 3 ? ChartRegion(to_polygon(d), r_.charts[fi].cell) : ChartRegion();
+    const Points2 d = clip(chart_disk(reached_impl_, fi, center, r, false), reached_impl_.face_polygon[fi]);
+    return d.size() >= 3 ? ChartRegion(to_polygon(d), reached_impl_.charts[fi].cell) : ChartRegion();
   }
   // The overshoot of a slide on face fi, in the face's plane (Fig 3.14): sliding trajectories from s stay in
   // the projection of the free-space cylinder about seg[s, p + eps_o u(s)], u(s) = (p − s) / |p − s|, whose
@@ -414,7 +420,7 @@ class SpringProjector {
   }
   std::vector<Vec3> lifted(int fi, const Points2& part) const {
     std::vector<Vec3> out;
-    for (const Point2& q : part) out.push_back(r_.charts[fi].lift_double(q));
+    for (const Point2& q : part) out.push_back(reached_impl_.charts[fi].lift_double(q));
     return out;
   }
 
@@ -448,7 +454,7 @@ class SpringProjector {
       for (const Points2& src : sources) {
         if (src.empty() || !may_stay(fi, lifted(fi, src))) continue;
         Points2 lower_out;
-        ChartRegion slid = velocity_slide(r_, fi, src, vm_, &lower_out);
+        ChartRegion slid = velocity_slide(reached_impl_, fi, src, velocity_, &lower_out);
         if (!slid.is_empty())
           slid_parts.push_back(std::move(slid));
         else if (!lower_out.empty())
@@ -469,11 +475,11 @@ class SpringProjector {
         entry_pts.insert(entry_pts.end(), l.begin(), l.end());
     const Points2 entry_hull = hull_or_points(entry_pts);
     if (entry_hull.empty() || !may_stay(fi, lifted(fi, entry_hull))) return;
-    const Points2 strip = spring_strip(r_, fi, entry_hull, face_[fi].center, eps_t_,
+    const Points2 strip = spring_strip(reached_impl_, fi, entry_hull, face_[fi].center, eps_t_,
                                        in_plane_overshoot(fi, lifted(fi, entry_hull)));
     if (strip.size() >= 3) {
       // The slide ends where the robot must leave the face: the strip outside the no-slide disk.
-      ChartRegion slid(to_polygon(strip), r_.charts[fi].cell);
+      ChartRegion slid(to_polygon(strip), reached_impl_.charts[fi].cell);
       slid.difference(face_[fi].no_slide);
       add_reached_region(fi, slid);
     } else if (!strip.empty()) {
@@ -491,14 +497,14 @@ class SpringProjector {
 
   // New reached parts: the edges and corners they touch, then one flight from the hull of what may leave.
   void process_new_parts(int fi) {
-    const FaceChart& chart = r_.charts[fi];
+    const FaceChart& chart = reached_impl_.charts[fi];
     ChartRegion fresh = std::move(face_[fi].pending_new);
     face_[fi].pending_new = ChartRegion();
     std::vector<Points2> news = convex_pieces(fresh);
     for (Points2& l : face_[fi].pending_new_lower) news.push_back(std::move(l));
     face_[fi].pending_new_lower.clear();
     add_boundary_closure(
-        r_, fi, news, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
+        reached_impl_, fi, news, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
         [&](int vi) { add_vertex(vi); });
     fresh.difference(face_[fi].strong);
     // Points inside the no-leave disk cannot leave the face: they do not fly.
@@ -527,8 +533,8 @@ class SpringProjector {
     flew_ = true;
     std::vector<FlightHit> hits =
         model_ == SpringModel::kVelocity
-            ? velocity_fly(r_, src, source_face, vm_)
-            : spring_fly(r_, spring_generators(src, p_, eps_o_), source_face, eps_t_);
+            ? velocity_fly(reached_impl_, src, source_face, velocity_)
+            : spring_fly(reached_impl_, spring_generators(src, p_, eps_o_), source_face, eps_t_);
     for (FlightHit& h : hits) {
       if (model_ == SpringModel::kVelocity) {
         // No landing inside the no-slide disk: there every admissible velocity points out of the face, so
@@ -569,17 +575,17 @@ class SpringProjector {
   // the parameter interval about tp where it must leave (edge_must_leave_halfwidth), shrunk by the decision
   // margin (favours staying).
   double edge_leave_halfwidth(const Edge& e, double tp) const {
-    return edge_must_leave_halfwidth(c_, e, tp, p_, u_, kDecisionMargin * c_.scale());
+    return edge_must_leave_halfwidth(cspace_, e, tp, p_, u_, kDecisionMargin * cspace_.scale());
   }
 
   void process_edge(int ei) {
     ++steps_;
     std::vector<EdgeInterval> ivs = std::move(edge_[ei].pending);
     edge_[ei].pending.clear();
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     for (const EdgeInterval& iv : ivs) {
-      if (iv.t0 <= kEdgeParamSlack) add_vertex(e.vertex_a - nf_ - ne_);
-      if (iv.t1 >= 1 - kEdgeParamSlack) add_vertex(e.vertex_b - nf_ - ne_);
+      if (iv.t0 <= kEdgeParamSlack) add_vertex(e.vertex_a - face_count_ - edge_count_);
+      if (iv.t1 >= 1 - kEdgeParamSlack) add_vertex(e.vertex_b - face_count_ - edge_count_);
     }
     // Contact lift (docs/verifier.md "Contact lift"): a robot sliding on one face into this concave edge may
     // meet the other face up to lift_ above the edge, whatever the edge's class; there it may stick or slide.
@@ -612,8 +618,8 @@ class SpringProjector {
         const int fi = f;
         // Only the parts of the interval from which entering is possible.
         for (const auto& [s0, s1] : enter_parts(e, fi, iv.t0, iv.t1)) {
-          const Point2 ca = r_.charts[fi].project(Vec3(e.a + s0 * d));
-          const Point2 cb = r_.charts[fi].project(Vec3(e.a + s1 * d));
+          const Point2 ca = reached_impl_.charts[fi].project(Vec3(e.a + s0 * d));
+          const Point2 cb = reached_impl_.charts[fi].project(Vec3(e.a + s1 * d));
           add_entry_lower(fi, s1 > s0 ? Points2{ca, cb} : Points2{ca});
         }
       }
@@ -633,7 +639,7 @@ class SpringProjector {
 
   // In-face unit normal of edge e on face fi, pointing from the edge into the face.
   Vec3 into_face(const Edge& e, int fi) const {
-    const Face& f = c_.faces()[fi];
+    const Face& f = cspace_.faces()[fi];
     Vec3 m = f.normal.cross(e.b - e.a).normalized();
     Vec3 centroid = Vec3::Zero();
     for (const Vec3& q : f.polygon) centroid += q / static_cast<double>(f.polygon.size());
@@ -650,10 +656,10 @@ class SpringProjector {
     if (!slides_on(g)) return false;
     // Not all of the interval inside g's no-slide disk: there every admissible pull lifts the robot off g,
     // so it arrives in flight (the flights cover that), not sliding on g.
-    const double r = no_slide_radius(g) - kDecisionMargin * c_.scale();
+    const double r = no_slide_radius(g) - kDecisionMargin * cspace_.scale();
     if (r > 0 && max_dist(g, {a, b}) < r) return false;
     const Vec3 m = into_face(e, g);
-    const double sv = std::sin(u_.theta_v), margin = kDecisionMargin * c_.scale();
+    const double sv = std::sin(u_.theta_v), margin = kDecisionMargin * cspace_.scale();
     auto away = [&](const Vec3& x) {
       return (p_ - x).dot(m) - u_.eps_s - sv * ((p_ - x).norm() + u_.eps_s) - margin;
     };
@@ -665,9 +671,9 @@ class SpringProjector {
   // needs slipping. (The disk is tested by distance, not by its polygon clipped to the face, so that
   // reached segments on the face's boundary count as inside it.)
   bool slides_on(int g) const {
-    const double r = no_slide_radius(g) - kDecisionMargin * c_.scale();
+    const double r = no_slide_radius(g) - kDecisionMargin * cspace_.scale();
     auto must_leave = [&](const Points2& l) { return r > 0 && max_dist(g, lifted(g, l)) < r; };
-    const FaceSet& fs = r_.faces[g];
+    const FaceSet& fs = reached_impl_.faces[g];
     if (!fs.region.is_empty()) {
       ChartRegion sliding = fs.region;
       sliding.difference(face_[g].strong);
@@ -690,7 +696,7 @@ class SpringProjector {
   // reached edge interval [a, b]: f gets the strip [a, b] + [0, lift_] d (d in f, away from the edge),
   // clipped to f, as an entry: where f's strong configurations hold it, it sticks; elsewhere it may slide.
   void add_lift_strips(int ei, const std::vector<EdgeInterval>& ivs) {
-    const Edge& e = c_.edges()[ei];
+    const Edge& e = cspace_.edges()[ei];
     const Vec3 dir = e.b - e.a;
     for (int f : e.faces) {
       int g = -1;
@@ -698,16 +704,16 @@ class SpringProjector {
         if (h != f) g = h;
       if (g < 0) continue;
       const Vec3 d = into_face(e, f);
-      const FaceChart& chart = r_.charts[f];
+      const FaceChart& chart = reached_impl_.charts[f];
       for (const EdgeInterval& iv : ivs) {
         const Vec3 a = e.a + iv.t0 * dir, b = e.a + iv.t1 * dir;
         if (!may_approach(e, g, a, b)) continue;
         const Points2 rect =
             clip(convex_hull({chart.project(a), chart.project(b), chart.project(Vec3(b + lift_ * d)),
                               chart.project(Vec3(a + lift_ * d))}),
-                 r_.face_polygon[f]);
+                 reached_impl_.face_polygon[f]);
         if (rect.size() >= 3)
-          add_entry_region(f, ChartRegion(to_polygon(rect), r_.charts[f].cell));
+          add_entry_region(f, ChartRegion(to_polygon(rect), reached_impl_.charts[f].cell));
         else if (!rect.empty())
           add_entry_lower(f, rect);
       }
@@ -717,25 +723,25 @@ class SpringProjector {
   void process_vertex(int vi) {
     ++steps_;
     pend_vertex_[vi] = 0;
-    const Vertex& vx = c_.vertices()[vi];
-    if (strong_atom_[ne_ + vi]) return;  // p in the vertex's strong region: it sticks there
+    const Vertex& vx = cspace_.vertices()[vi];
+    if (strong_atom_[edge_count_ + vi]) return;  // p in the vertex's strong region: it sticks there
     for (int e : vx.edges) {
-      const Edge& edge = c_.edges()[e - nf_];
+      const Edge& edge = cspace_.edges()[e - face_count_];
       const double t = edge.vertex_a == vx.id ? 0.0 : 1.0;
-      add_interval(e - nf_, t, t);
+      add_interval(e - face_count_, t, t);
     }
-    for (int f : vx.faces) add_entry_lower(f, {r_.charts[f].project(vx.point)});
+    for (int f : vx.faces) add_entry_lower(f, {reached_impl_.charts[f].project(vx.point)});
     fly({exact(vx.point)}, -1);
   }
 
   // ---- results ----
   ReachedSet termination() const {
-    ReachedSet out(c_);
+    ReachedSet out(cspace_);
     ReachedSet::Impl& t = out.impl();
-    for (int fi = 0; fi < nf_; ++fi) {
+    for (int fi = 0; fi < face_count_; ++fi) {
       const Points2& w = face_[fi].weak;
       if (w.empty()) continue;
-      const FaceSet& f = r_.faces[fi];
+      const FaceSet& f = reached_impl_.faces[fi];
       if (!f.region.is_empty() && w.size() >= 3) {
         ChartRegion part = f.region;
         part.intersection(to_polygon(w));
@@ -756,36 +762,37 @@ class SpringProjector {
       for (const Point2& q : f.points)
         if (inside_closed(w, q)) t.add_point(fi, q);
     }
-    for (int ei = 0; ei < ne_; ++ei)
+    for (int ei = 0; ei < edge_count_; ++ei)
       if (weak_atom_[ei])
-        for (const EdgeInterval& iv : r_.edges[ei]) t.add_interval(ei, iv.t0, iv.t1, nullptr);
-    for (int vi = 0; vi < nv_; ++vi)
-      if (weak_atom_[ne_ + vi] && r_.vertices[vi]) t.add_vertex(vi);
+        for (const EdgeInterval& iv : reached_impl_.edges[ei]) t.add_interval(ei, iv.t0, iv.t1, nullptr);
+    for (int vi = 0; vi < vertex_count_; ++vi)
+      if (weak_atom_[edge_count_ + vi] && reached_impl_.vertices[vi]) t.add_vertex(vi);
     return out;
   }
 
   // Does the closed ball about p of radius r meet free space? p free, or within r of the contact surface
   // (every surface point is a limit of free points). Decided with a relative margin that favours "yes".
   bool rest_ball_meets_free(double r) const {
-    if (c_.classify(p_, 0) == PointClass::kFree) return true;
-    return c_.distance_to_surface(p_) <= r * (1 + kSpringRelativeSlack) + kDecisionMargin * c_.scale();
+    if (cspace_.classify(p_, 0) == PointClass::kFree) return true;
+    return cspace_.distance_to_surface(p_) <=
+           r * (1 + kSpringRelativeSlack) + kDecisionMargin * cspace_.scale();
   }
 
   // Margin (x scene scale) by which floating-point decisions about leaving/staying/resting favour motion.
   static constexpr double kDecisionMargin = 1e-9;
 
-  const CSpace& c_;
+  const CSpace& cspace_;
   Uncertainty u_;
   Vec3 p_;
   SpringModel model_;
   double eps_t_, eps_o_, tan_v_;
-  VelocitySpring vm_;        // the velocity model's shared data (kVelocity only)
+  VelocitySpring velocity_;  // the velocity model's shared data (kVelocity only)
   const ReachedSet& start_;  // alive during run() (forward_project_spring)
   double kappa_;             // the stop rule's relative speed
   double lift_;              // contact lift (task units; 0: first-order contact)
   ReachedSet reached_;
-  ReachedSet::Impl& r_;
-  int nf_ = 0, ne_ = 0, nv_ = 0;
+  ReachedSet::Impl& reached_impl_;
+  int face_count_ = 0, edge_count_ = 0, vertex_count_ = 0;
   std::vector<FaceState> face_;
   std::vector<EdgeState> edge_;
   std::vector<bool> weak_atom_, strong_atom_;  // edges then vertices

@@ -6,7 +6,7 @@
 
 namespace cmt::fp {
 
-DamperWorklist::DamperWorklist(ReachedSet::Impl& set) : r_(set) {
+DamperWorklist::DamperWorklist(ReachedSet::Impl& set) : reached_impl_(set) {
   const std::size_t nf = set.faces.size();
   region_.resize(nf);
   seg_.resize(nf);
@@ -22,34 +22,34 @@ DamperWorklist::DamperWorklist(ReachedSet::Impl& set) : r_(set) {
 
 bool DamperWorklist::add_region(int fi, const ChartRegion& part) {
   ChartRegion added;
-  if (!r_.add_region(fi, part, &added)) return false;
+  if (!reached_impl_.add_region(fi, part, &added)) return false;
   region_[fi].join(added);
   return true;
 }
 
 bool DamperWorklist::add_convex(int fi, const Points2& pts) {
-  if (pts.size() >= 3) return add_region(fi, ChartRegion(to_polygon(pts), r_.charts[fi].cell));
+  if (pts.size() >= 3) return add_region(fi, ChartRegion(to_polygon(pts), reached_impl_.charts[fi].cell));
   if (pts.size() == 2) return add_segment(fi, pts[0], pts[1]);
   if (pts.size() == 1) return add_point(fi, pts[0]);
   return false;
 }
 
 bool DamperWorklist::add_segment(int fi, const Point2& a, const Point2& b) {
-  if (!r_.add_segment(fi, a, b)) return false;
+  if (!reached_impl_.add_segment(fi, a, b)) return false;
   seg_[fi].push_back({a, b});
   return true;
 }
 
 bool DamperWorklist::add_point(int fi, const Point2& p) {
-  if (!r_.add_point(fi, p)) return false;
+  if (!reached_impl_.add_point(fi, p)) return false;
   pt_[fi].push_back({p});
   return true;
 }
 
 void DamperWorklist::add_interval(int ei, double t0, double t1) {
-  const std::vector<EdgeInterval> before = r_.edges[ei];
+  const std::vector<EdgeInterval> before = reached_impl_.edges[ei];
   std::vector<EdgeInterval> added;
-  const double fresh = r_.add_interval(ei, t0, t1, &added);
+  const double fresh = reached_impl_.add_interval(ei, t0, t1, &added);
   if (fresh < 0) return;
   // Growth below the parameter slack is rounding, not reach: stored, not propagated. So is an extension of a
   // held interval by no more than kRegionGrowthCells region cells: the face regions' outward rounding (up to
@@ -61,9 +61,11 @@ void DamperWorklist::add_interval(int ei, double t0, double t1) {
     return;
   }
   if (fresh <= 4 * kEdgeParamSlack) return;
-  const Edge& e = r_.cspace->edges()[ei];
-  const double rounding = kRegionGrowthCells * region_cell(r_.cspace->scale()) / (e.b - e.a).norm();
-  const int first_vertex = static_cast<int>(r_.cspace->faces().size() + r_.cspace->edges().size());
+  const Edge& e = reached_impl_.cspace->edges()[ei];
+  const double rounding =
+      kRegionGrowthCells * region_cell(reached_impl_.cspace->scale()) / (e.b - e.a).norm();
+  const int first_vertex =
+      static_cast<int>(reached_impl_.cspace->faces().size() + reached_impl_.cspace->edges().size());
   for (const EdgeInterval& gap : added) {
     const bool extends = std::any_of(before.begin(), before.end(), [&](const EdgeInterval& held) {
       return std::abs(gap.t0 - held.t1) <= kEdgeParamSlack || std::abs(gap.t1 - held.t0) <= kEdgeParamSlack;
@@ -78,17 +80,17 @@ void DamperWorklist::add_interval(int ei, double t0, double t1) {
 }
 
 void DamperWorklist::add_vertex(int vi) {
-  if (r_.add_vertex(vi)) vertex_[vi] = 1;
+  if (reached_impl_.add_vertex(vi)) vertex_[vi] = 1;
 }
 
 void DamperWorklist::add_closure(int fi, const std::vector<Points2>& parts) {
   add_boundary_closure(
-      r_, fi, parts, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
+      reached_impl_, fi, parts, [&](int ei, double t0, double t1) { add_interval(ei, t0, t1); },
       [&](int vi) { add_vertex(vi); });
 }
 
 void DamperWorklist::add_interval_ends(int ei, const std::vector<EdgeInterval>& intervals) {
-  const CSpace& c = *r_.cspace;
+  const CSpace& c = *reached_impl_.cspace;
   const int first_vertex = static_cast<int>(c.faces().size() + c.edges().size());
   const Edge& e = c.edges()[ei];
   for (const EdgeInterval& iv : intervals) {

@@ -67,7 +67,7 @@ class DamperWorklist {
   }
 
  private:
-  ReachedSet::Impl& r_;
+  ReachedSet::Impl& reached_impl_;
   std::vector<ChartRegion> region_;
   std::vector<std::vector<Points2>> seg_, pt_;
   std::vector<std::vector<EdgeInterval>> edge_;
