@@ -1,4 +1,4 @@
-// A loaded task: geometry, error bounds, start/goal regions, motions and strategies (contracts.md "Task
+// A loaded task: geometry, error bounds, start/goal regions, motions and strategies (docs/contracts.md "Task
 // files"). Immutable once loaded; every length is in the task's own units.
 #pragma once
 
@@ -44,7 +44,7 @@ struct ConvexPart {
   std::string key;
 };
 
-// A start or goal region in configuration space (contracts.md): a point, a segment, or a convex planar
+// A start or goal region in configuration space (docs/contracts.md): a point, a segment, or a convex planar
 // polygon.
 struct Region {
   enum class Kind { kPoint, kSegment, kPolygon };
@@ -110,7 +110,7 @@ struct StrategyNode {
   std::vector<StrategyBranch> branches;  // the conditional test after this motion (then next == -1)
 };
 
-// A strategy (contracts.md, docs/task-format.md "strategies"): a decision-free sequence of motions, or a
+// A strategy (docs/contracts.md, docs/task-format.md "strategies"): a decision-free sequence of motions, or a
 // tree with conditional branches (Buckley §4.2).
 struct Strategy {
   std::string name;

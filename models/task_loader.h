@@ -1,7 +1,7 @@
-// Reads a task YAML file (contracts.md "Task files") into a Task, checking the schema: unknown, missing and
-// mistyped keys, value ranges, degenerate parts and regions, strategies naming unknown motions.
-// Checks that need the configuration space (regions on the contact surface, empty free space) live in
-// load_task (models/loaded_task.h). Every failure throws TaskError naming file, key path and reason.
+// Reads a task YAML file (docs/contracts.md "Task files") into a Task, checking the schema: unknown, missing
+// and mistyped keys, value ranges, degenerate parts and regions, strategies naming unknown motions. Checks
+// that need the configuration space (regions on the contact surface, empty free space) live in load_task
+// (models/loaded_task.h). Every failure throws TaskError naming file, key path and reason.
 #pragma once
 
 #include <filesystem>

@@ -1,6 +1,6 @@
-// MuJoCo 2.2 MJCF scene of a task (contracts.md `cmt export-mjcf`): the robot is one body with slide joints
-// x, y, z whose joint positions are the configuration-space point in metres; environment parts and bounds
-// walls are world geoms. What is emitted, and why each contact and solver option has its value, is in
+// MuJoCo 2.2 MJCF scene of a task (docs/contracts.md `cmt export-mjcf`): the robot is one body with slide
+// joints x, y, z whose joint positions are the configuration-space point in metres; environment parts and
+// bounds walls are world geoms. What is emitted, and why each contact and solver option has its value, is in
 // docs/mujoco-scene.md.
 #pragma once
 

@@ -1,5 +1,5 @@
 // How every cmt command reports: one JSON object on stdout with --json (logs and messages on stderr), and the
-// exit statuses of contracts.md: 0 success, 1 the computation found a failure, 2 bad input or usage.
+// exit statuses of docs/contracts.md: 0 success, 1 the computation found a failure, 2 bad input or usage.
 #pragma once
 
 #include <nlohmann/json.hpp>

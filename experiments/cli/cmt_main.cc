@@ -1,6 +1,6 @@
 // The cmt command-line program. Each subcommand prints exactly one JSON object on stdout with --json; exit
-// status 0 success, 1 failure found, 2 bad input or usage (contracts.md "Command line"). Subcommands register
-// themselves (experiments/cli/command.h); this file only maps exceptions to exit statuses.
+// status 0 success, 1 failure found, 2 bad input or usage (docs/contracts.md "Command line"). Subcommands
+// register themselves (experiments/cli/command.h); this file only maps exceptions to exit statuses.
 #include <CLI/CLI.hpp>
 #include <iostream>
 

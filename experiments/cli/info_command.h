@@ -1,4 +1,4 @@
-// `cmt info TASK [--atoms] --json`: counts of the C-space atoms (contracts.md), and with --atoms their
+// `cmt info TASK [--atoms] --json`: counts of the C-space atoms (docs/contracts.md), and with --atoms their
 // geometry.
 #pragma once
 

@@ -1,5 +1,5 @@
 // `cmt plan-edr TASK [--coarse K] [--fine K] [--max-motions M] [--min-motions M] [--angle-step A]
-// [--angle-steps N] [--guaranteed] [--first-order] [-o OUT.yaml] --json` (contracts.md): LIMITED's
+// [--angle-steps N] [--guaranteed] [--first-order] [-o OUT.yaml] --json` (docs/contracts.md): LIMITED's
 // generate-and-test search for an EDR strategy of one or two damper motions (verifier/edr/edr_plan.h,
 // docs/edr.md "Planning"). `found`, `strategy` (the planned motions' names), `motions` (name, commanded),
 // `verdicts` (coarse verdicts computed), `guaranteed` (success guaranteed in every slice with a goal),

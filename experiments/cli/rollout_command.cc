@@ -96,7 +96,7 @@ void write_trajectories(const std::filesystem::path& file, const std::vector<Rol
   if (!out) throw std::runtime_error("cannot write trajectory file '" + file.string() + "': write failed");
 }
 
-// The `cmt rollout --json` object (contracts.md): the run's settings, counts and totals, every outcome.
+// The `cmt rollout --json` object (docs/contracts.md): the run's settings, counts and totals, every outcome.
 struct RolloutRun {
   const LoadedTask& task;
   const RolloutScene& scene;

@@ -1,4 +1,4 @@
-// `cmt sticking TASK --motion NAME --json` (contracts.md): per atom {atom, kind, class} with class
+// `cmt sticking TASK --motion NAME --json` (docs/contracts.md): per atom {atom, kind, class} with class
 // must/may/never under the motion's error bounds; damper motions add each face's sliding cone, spring motions
 // each face's weak and strong sticking configurations (Buckley Fig 3.16) as polygons.
 #pragma once

@@ -1,7 +1,7 @@
 // `cmt validate TASK --strategy NAME --edr -n N --seed S [--per-world K] [--resolution R] [--mode M]
-// [--threads T] --json` (contracts.md): an EDR strategy against MuJoCo rollouts in worlds drawn uniformly
-// over the model parameters' intervals (experiments/edr/edr_check.h, docs/edr.md "Physics check"). The
-// strategy's last motion must carry the EDR termination predicate (`edr: true`).
+// [--threads T] --json` (docs/contracts.md): an EDR strategy against MuJoCo rollouts in worlds drawn
+// uniformly over the model parameters' intervals (experiments/edr/edr_check.h, docs/edr.md "Physics check").
+// The strategy's last motion must carry the EDR termination predicate (`edr: true`).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,5 +1,5 @@
-// `cmt verify TASK --strategy NAME --json` (contracts.md) and `cmt verify TASK --motion NAME --json` (one
-// motion from the task's start): Buckley's verifier for decision-free strategies of generalized-damper
+// `cmt verify TASK --strategy NAME --json` (docs/contracts.md) and `cmt verify TASK --motion NAME --json`
+// (one motion from the task's start): Buckley's verifier for decision-free strategies of generalized-damper
 // motions. Fields: reliable, steps (motion, termination = [{atom, kind, polygon}]), seconds; when unreliable
 // also failed_step, failure and outside_goal (the offending termination pieces). The verifier runs under a
 // wall-clock limit (--time-limit, default kDefaultVerifyTimeLimit): every answer has timed_out, and one that

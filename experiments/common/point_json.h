@@ -1,4 +1,4 @@
-// A point of a task in JSON, in the task's own coordinates (contracts.md): [x, y, z], or [x, z] for a
+// A point of a task in JSON, in the task's own coordinates (docs/contracts.md): [x, y, z], or [x, z] for a
 // planar task.
 #pragma once
 

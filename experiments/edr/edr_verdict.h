@@ -1,6 +1,6 @@
 // The EDR verdict of a strategy as the CLI gives it (`cmt edr`, `cmt verify --edr`, `cmt validate --edr`):
 // the task's slices at a resolution, the verifier's model in each slice and the JSON of the result
-// (contracts.md: edr_reliable, slices with params, goal_empty, distinguishable and the F/P/P~/H pieces).
+// (docs/contracts.md: edr_reliable, slices with params, goal_empty, distinguishable and the F/P/P~/H pieces).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>

@@ -1,5 +1,5 @@
-// The `cmt teach --json` object (contracts.md): solved, steps (per step motion, chain, solved_regions and
-// start_remaining as [{atom, name, kind, polygon}], the measures, failure and blocking pieces, counts and
+// The `cmt teach --json` object (docs/contracts.md): solved, steps (per step motion, chain, solved_regions
+// and start_remaining as [{atom, name, kind, polygon}], the measures, failure and blocking pieces, counts and
 // seconds), strategy (the taught sequence, or null), and the taught task file that `-o` writes.
 #pragma once
 

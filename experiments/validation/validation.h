@@ -198,7 +198,7 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
 std::string validate_with_verifier_budget(double budget, ValidateOptions options,
                                           const std::function<std::string(const ValidateOptions&)>& work);
 
-// The `cmt validate --json` object: the contracts.md fields (reliable, rollouts, successes, outside,
+// The `cmt validate --json` object: the docs/contracts.md fields (reliable, rollouts, successes, outside,
 // soundness, coverage) and the rest of the result (prediction as verify_json, worst offenders, the
 // counterexample, the sticking table). `with_ends` adds every observed end.
 nlohmann::json validation_json(const LoadedTask& task, const ValidationResult& result,

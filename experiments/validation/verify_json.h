@@ -1,4 +1,4 @@
-// The `cmt verify --json` object (contracts.md, docs/verifier.md "Output"): reliable, steps (motion,
+// The `cmt verify --json` object (docs/contracts.md, docs/verifier.md "Output"): reliable, steps (motion,
 // termination = [{atom, name, kind, polygon}], ...), seconds, the verifier options; when unreliable also
 // failed_step, failure and outside_goal (the offending termination pieces). `cmt validate` and the sweep's
 // results store keep it as the prediction.

@@ -1,4 +1,4 @@
-// End-to-end tests of the cmt program: exit statuses and the JSON fields of contracts.md.
+// End-to-end tests of the cmt program: exit statuses and the JSON fields of docs/contracts.md.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// End-to-end tests of `cmt rollout` and `cmt calibrate-friction`: JSON fields of contracts.md, exit
+// End-to-end tests of `cmt rollout` and `cmt calibrate-friction`: JSON fields of docs/contracts.md, exit
 // statuses, bad input, and results independent of the thread count.
 #include <gtest/gtest.h>
 #include <unistd.h>

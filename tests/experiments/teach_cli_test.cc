@@ -1,5 +1,5 @@
 // `cmt teach` end to end (docs/teaching.md): teaching session files and their errors, the JSON fields of
-// contracts.md, the written task, the interactive mode on stdin and the pre-image check in physics.
+// docs/contracts.md, the written task, the interactive mode on stdin and the pre-image check in physics.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// End-to-end tests of `cmt validate` (docs/validation.md): the contracts.md fields, real outcomes on the
+// End-to-end tests of `cmt validate` (docs/validation.md): the docs/contracts.md fields, real outcomes on the
 // built-in two_blocks and cube tasks, counterexamples that replay with `cmt rollout`, the counterexample
 // search, results independent of the thread count, the sticking table, and bad input.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Every validation rule of the task format has a case here: the error must name the file, the key path and
-// the reason (contracts.md "Task files").
+// the reason (docs/contracts.md "Task files").
 #include "models/task_loader.h"
 
 #include <gtest/gtest.h>
