@@ -20,7 +20,7 @@
 namespace cmt {
 namespace {
 
-using namespace fp;
+using namespace face_geometry;
 
 class BackProjector {
  public:

@@ -20,7 +20,7 @@
 #include <numbers>
 #include <optional>
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 struct Box {
@@ -325,4 +325,4 @@ std::vector<FlightHit> fly(const ReachedSet::Impl& g, const FlightSource& source
   return hits;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

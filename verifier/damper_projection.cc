@@ -19,7 +19,7 @@
 namespace cmt {
 namespace {
 
-using namespace fp;
+using namespace face_geometry;
 // Contact-lift strips seeded over an edge's reached intervals before the strip along the whole edge is taken.
 constexpr int kLiftStripRounds = 8;
 // Landing coasts that grew one face before its whole polygon is taken (coast_after_landing); rim coast

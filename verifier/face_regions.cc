@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 FT plane_coef(const Plane3& p, int i) { return i == 0 ? p.a() : (i == 1 ? p.b() : p.c()); }
@@ -236,4 +236,4 @@ ChartRegion union_of(const std::vector<PolygonWithHoles2>& polygons, double cell
 
 double area(const ChartRegion& set) { return set.area(); }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -8,7 +8,7 @@
 #include "verifier/damper.h"
 #include "verifier/internal/damper_flight.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 constexpr double kPi = std::numbers::pi;
 }  // namespace
@@ -45,4 +45,4 @@ Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
   return out;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -11,17 +11,17 @@
 
 namespace cmt {
 
-using fp::ChartRegion;
-using fp::FT;
-using fp::Point2;
-using fp::Points2;
-using fp::PolygonWithHoles2;
+using face_geometry::ChartRegion;
+using face_geometry::FT;
+using face_geometry::Point2;
+using face_geometry::Points2;
+using face_geometry::PolygonWithHoles2;
 
 namespace {
 
 // Is the segment inside the closed region? Exactly when both ends are and so is the midpoint of every piece
 // between its crossings with the region's boundary (each piece is then inside or outside as a whole).
-bool region_contains_segment(const ChartRegion& region, const fp::Segment2& seg) {
+bool region_contains_segment(const ChartRegion& region, const face_geometry::Segment2& seg) {
   const Point2 &a = seg.source(), &b = seg.target();
   if (region.oriented_side(a) == CGAL::ON_NEGATIVE_SIDE || region.oriented_side(b) == CGAL::ON_NEGATIVE_SIDE)
     return false;
@@ -29,12 +29,12 @@ bool region_contains_segment(const ChartRegion& region, const fp::Segment2& seg)
   const FT len2 = seg.squared_length();
   std::vector<PolygonWithHoles2> pwhs;
   region.polygons_with_holes(std::back_inserter(pwhs));
-  auto scan = [&](const fp::Polygon2& poly) {
+  auto scan = [&](const face_geometry::Polygon2& poly) {
     for (auto e = poly.edges_begin(); e != poly.edges_end(); ++e) {
       const auto x = CGAL::intersection(seg, *e);
       if (!x) continue;
       if (const Point2* p = boost::get<Point2>(&*x)) ts.push_back(((*p - a) * (b - a)) / len2);
-      if (const fp::Segment2* s = boost::get<fp::Segment2>(&*x)) {
+      if (const face_geometry::Segment2* s = boost::get<face_geometry::Segment2>(&*x)) {
         ts.push_back(((s->source() - a) * (b - a)) / len2);
         ts.push_back(((s->target() - a) * (b - a)) / len2);
       }
@@ -58,11 +58,11 @@ bool region_contains_segment(const ChartRegion& region, const fp::Segment2& seg)
 
 ReachedSet::Impl::Impl(const CSpace& c) : cspace(&c) {
   for (const Face& f : c.faces()) {
-    charts.push_back(fp::make_chart(f));
+    charts.push_back(face_geometry::make_chart(f));
     charts.back().cell = region_cell(c.scale());
     Points2 pts;
     for (const Vec3& p : f.polygon) pts.push_back(charts.back().project(p));
-    face_polygon.push_back(fp::convex_hull(pts));
+    face_polygon.push_back(face_geometry::convex_hull(pts));
   }
   faces.resize(c.faces().size());
   edges.resize(c.edges().size());
@@ -75,24 +75,24 @@ bool ReachedSet::Impl::add_region(int fi, const ChartRegion& part, ChartRegion* 
   if (diff.is_empty()) return false;
   faces[fi].region.join(part);
   // Growth no wider than a few grid cells is the region kernel's rounding, not reach: stored, not new.
-  if (!diff.wider_than(fp::kRegionGrowthCells)) return false;
+  if (!diff.wider_than(face_geometry::kRegionGrowthCells)) return false;
   if (added) *added = std::move(diff);
   return true;
 }
 
 bool ReachedSet::Impl::covered(int fi, const Point2& p) const {
-  const fp::FaceSet& fs = faces[fi];
+  const face_geometry::FaceSet& fs = faces[fi];
   if (!fs.region.is_empty() && fs.region.oriented_side(p) != CGAL::ON_NEGATIVE_SIDE) return true;
-  for (const fp::Segment2& s : fs.segments)
+  for (const face_geometry::Segment2& s : fs.segments)
     if (s.has_on(p)) return true;
   return std::find(fs.points.begin(), fs.points.end(), p) != fs.points.end();
 }
 
 bool ReachedSet::Impl::add_segment(int fi, const Point2& a, const Point2& b) {
   if (a == b) return add_point(fi, a);
-  fp::FaceSet& fs = faces[fi];
-  const fp::Segment2 seg(a, b);
-  for (const fp::Segment2& s : fs.segments)
+  face_geometry::FaceSet& fs = faces[fi];
+  const face_geometry::Segment2 seg(a, b);
+  for (const face_geometry::Segment2& s : fs.segments)
     if (s.has_on(a) && s.has_on(b)) return false;
   if (!fs.region.is_empty() && region_contains_segment(fs.region, seg)) return false;
   fs.segments.push_back(seg);
@@ -170,7 +170,7 @@ void ReachedSet::add_whole_atom(int id) {
   const int k = c.atom_index(id);
   switch (c.atom_kind(id)) {
     case AtomKind::kFace: {
-      ChartRegion whole(fp::to_polygon(impl_->face_polygon[k]), impl_->charts[k].cell);
+      ChartRegion whole(face_geometry::to_polygon(impl_->face_polygon[k]), impl_->charts[k].cell);
       impl_->add_region(k, whole, nullptr);
       break;
     }
@@ -187,9 +187,9 @@ void ReachedSet::add_face_polygon(int id, const std::vector<Vec3>& polygon) {
   const int k = cspace().atom_index(id);
   Points2 pts;
   for (const Vec3& p : polygon) pts.push_back(impl_->charts[k].project(p));
-  pts = fp::convex_hull(pts);
+  pts = face_geometry::convex_hull(pts);
   if (pts.size() >= 3)
-    impl_->add_region(k, ChartRegion(fp::to_polygon(pts), impl_->charts[k].cell), nullptr);
+    impl_->add_region(k, ChartRegion(face_geometry::to_polygon(pts), impl_->charts[k].cell), nullptr);
   else if (pts.size() == 2)
     impl_->add_segment(k, pts[0], pts[1]);
   else if (pts.size() == 1)
@@ -226,24 +226,24 @@ void ReachedSet::add_boundary_closure() {
   const CSpace& c = cspace();
   const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
   for (int fi = 0; fi < nf; ++fi) {
-    const fp::FaceSet& fs = impl_->faces[fi];
+    const face_geometry::FaceSet& fs = impl_->faces[fi];
     if (fs.empty()) continue;
-    std::vector<Points2> parts = fp::convex_pieces(fs.region);
-    for (const fp::Segment2& s : fs.segments) parts.push_back({s.source(), s.target()});
+    std::vector<Points2> parts = face_geometry::convex_pieces(fs.region);
+    for (const face_geometry::Segment2& s : fs.segments) parts.push_back({s.source(), s.target()});
     for (const Point2& p : fs.points) parts.push_back({p});
     const Face& face = c.faces()[fi];
-    const fp::FaceChart& chart = impl_->charts[fi];
+    const face_geometry::FaceChart& chart = impl_->charts[fi];
     for (const Points2& part : parts) {
       for (int e : face.edges) {
         const Edge& edge = c.edges()[e - nf];
         FT t0, t1;
-        if (fp::clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1)) {
+        if (face_geometry::clip_segment(part, chart.project(edge.a), chart.project(edge.b), &t0, &t1)) {
           const EdgeInterval iv = outward(t0, t1);
           impl_->add_interval(e - nf, iv.t0, iv.t1, nullptr);
         }
       }
       for (int v : face.vertices)
-        if (fp::inside_closed(part, chart.project(c.vertices()[v - nf - ne].point)))
+        if (face_geometry::inside_closed(part, chart.project(c.vertices()[v - nf - ne].point)))
           impl_->add_vertex(v - nf - ne);
     }
   }
@@ -259,7 +259,7 @@ void ReachedSet::unite(const ReachedSet& other) {
   const Impl& o = *other.impl_;
   for (std::size_t fi = 0; fi < o.faces.size(); ++fi) {
     if (!o.faces[fi].region.is_empty()) impl_->add_region(static_cast<int>(fi), o.faces[fi].region, nullptr);
-    for (const fp::Segment2& s : o.faces[fi].segments)
+    for (const face_geometry::Segment2& s : o.faces[fi].segments)
       impl_->add_segment(static_cast<int>(fi), s.source(), s.target());
     for (const Point2& p : o.faces[fi].points) impl_->add_point(static_cast<int>(fi), p);
   }
@@ -278,7 +278,7 @@ ReachedSet ReachedSet::restricted(const std::vector<bool>& keep) const {
     const int k = c.atom_index(id);
     switch (c.atom_kind(id)) {
       case AtomKind::kFace:
-        out.impl_->faces[k] = fp::FaceSet();
+        out.impl_->faces[k] = face_geometry::FaceSet();
         break;
       case AtomKind::kEdge:
         out.impl_->edges[k].clear();
@@ -317,7 +317,8 @@ bool ReachedSet::empty() const { return atoms().empty(); }
 double ReachedSet::face_area(int id) const {
   const int k = cspace().atom_index(id);
   // Chart areas shrink by |n_drop| (projection along the dropped axis).
-  return fp::area(impl_->faces[k].region) / std::abs(cspace().faces()[k].normal[impl_->charts[k].drop]);
+  return face_geometry::area(impl_->faces[k].region) /
+         std::abs(cspace().faces()[k].normal[impl_->charts[k].drop]);
 }
 
 double ReachedSet::area() const {
@@ -340,15 +341,15 @@ bool ReachedSet::face_region_contains(int id, const Vec3& p) const {
 
 namespace {
 
-std::vector<Vec3> lift_loop(const fp::Polygon2& poly, const fp::FaceChart& chart) {
+std::vector<Vec3> lift_loop(const face_geometry::Polygon2& poly, const face_geometry::FaceChart& chart) {
   std::vector<Vec3> out;
   for (auto v = poly.vertices_begin(); v != poly.vertices_end(); ++v) out.push_back(chart.lift_double(*v));
   if (chart.flips) std::reverse(out.begin(), out.end());
   return out;
 }
 
-void region_pieces(const ChartRegion& region, int atom, const fp::FaceChart& chart, double area_scale,
-                   std::vector<ReachedPiece>* out) {
+void region_pieces(const ChartRegion& region, int atom, const face_geometry::FaceChart& chart,
+                   double area_scale, std::vector<ReachedPiece>* out) {
   std::vector<PolygonWithHoles2> pwhs;
   region.polygons_with_holes(std::back_inserter(pwhs));
   for (const PolygonWithHoles2& pwh : pwhs) {
@@ -373,10 +374,10 @@ std::vector<ReachedPiece> ReachedSet::pieces() const {
   const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
   std::vector<ReachedPiece> out;
   for (int fi = 0; fi < nf; ++fi) {
-    const fp::FaceSet& fs = impl_->faces[fi];
-    const fp::FaceChart& chart = impl_->charts[fi];
+    const face_geometry::FaceSet& fs = impl_->faces[fi];
+    const face_geometry::FaceChart& chart = impl_->charts[fi];
     region_pieces(fs.region, fi, chart, 1 / std::abs(c.faces()[fi].normal[chart.drop]), &out);
-    for (const fp::Segment2& s : fs.segments) {
+    for (const face_geometry::Segment2& s : fs.segments) {
       // Swallowed by a region grown later: only when the whole segment lies in it (a segment that leaves the
       // region must be reported, e.g. to the goal check, pieces_outside).
       if (!fs.region.is_empty() && region_contains_segment(fs.region, s)) continue;
@@ -448,16 +449,16 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
   std::vector<std::pair<double, double>> cover;
   const double len = (b - a).norm();
   for (int fi = 0; fi < nf; ++fi) {
-    const fp::FaceSet& fs = im.faces[fi];
+    const face_geometry::FaceSet& fs = im.faces[fi];
     if (fs.region.is_empty()) continue;
     const Face& f = c.faces()[fi];
     if (std::abs(f.normal.dot(a) - f.offset) > tol || std::abs(f.normal.dot(b) - f.offset) > tol) continue;
-    const fp::FaceChart& chart = im.charts[fi];
+    const face_geometry::FaceChart& chart = im.charts[fi];
     const Point2 a2 = chart.project(a), b2 = chart.project(b);
-    for (const Points2& piece : fp::convex_pieces(fs.region)) {
+    for (const Points2& piece : face_geometry::convex_pieces(fs.region)) {
       // Grow the piece by tol: each side moved outward (chart lengths are at most 3-D lengths).
       Points2 grown = piece;
-      std::vector<fp::HalfPlane2> sides;
+      std::vector<face_geometry::HalfPlane2> sides;
       for (std::size_t i = 0; i < piece.size(); ++i) {
         const Point2 &p = piece[i], &q = piece[(i + 1) % piece.size()];
         const FT dx = q.x() - p.x(), dy = q.y() - p.y();
@@ -466,7 +467,7 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
       }
       FT lo = 0, hi = 1;
       bool ok = true;
-      for (const fp::HalfPlane2& h : sides) {
+      for (const face_geometry::HalfPlane2& h : sides) {
         const FT fa = h.a * a2.x() + h.b * a2.y() + h.c, fb = h.a * b2.x() + h.b * b2.y() + h.c;
         if (fa < 0 && fb < 0) {
           ok = false;
@@ -481,9 +482,9 @@ bool segment_covered(const Vec3& a, const Vec3& b, const ReachedSet& container, 
   // A face's segments and points (a segment or point goal on a face, stored beside its regions) cover what
   // lies within tol of them.
   for (int fi = 0; fi < nf; ++fi) {
-    const fp::FaceSet& fs = im.faces[fi];
-    const fp::FaceChart& chart = im.charts[fi];
-    for (const fp::Segment2& seg : fs.segments)
+    const face_geometry::FaceSet& fs = im.faces[fi];
+    const face_geometry::FaceChart& chart = im.charts[fi];
+    for (const face_geometry::Segment2& seg : fs.segments)
       cover_along(a, b, chart.lift_double(seg.source()), chart.lift_double(seg.target()), 0, 1, tol, &cover);
     for (const Point2& q : fs.points) cover_near_point(a, b, chart.lift_double(q), tol, &cover);
   }
@@ -528,9 +529,9 @@ bool convex_piece_near(const std::vector<Vec3>& pts, const ReachedSet& container
     }
   }
   for (std::size_t fi = 0; fi < im.faces.size(); ++fi) {
-    const fp::FaceSet& fs = im.faces[fi];
-    const fp::FaceChart& chart = im.charts[fi];
-    for (const fp::Segment2& sg : fs.segments) {
+    const face_geometry::FaceSet& fs = im.faces[fi];
+    const face_geometry::FaceChart& chart = im.charts[fi];
+    for (const face_geometry::Segment2& sg : fs.segments) {
       const Vec3 a = chart.lift_double(sg.source()), b = chart.lift_double(sg.target());
       if (all_within([&](const Vec3& p) { return distance_to_segment(p, a, b); })) return true;
     }
@@ -540,7 +541,7 @@ bool convex_piece_near(const std::vector<Vec3>& pts, const ReachedSet& container
     }
     if (fs.region.is_empty()) continue;
     const Vec3& n = c.faces()[fi].normal;
-    for (const Points2& piece : fp::convex_pieces(fs.region)) {
+    for (const Points2& piece : face_geometry::convex_pieces(fs.region)) {
       std::vector<Vec3> poly;
       for (const Point2& q : piece) poly.push_back(chart.lift_double(q));
       if (chart.flips) std::reverse(poly.begin(), poly.end());  // counter-clockwise about the normal
@@ -557,9 +558,9 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
   const int nf = static_cast<int>(c.faces().size());
   std::vector<ReachedPiece> out;
   for (int fi = 0; fi < nf; ++fi) {
-    const fp::FaceSet& fs = impl_->faces[fi];
+    const face_geometry::FaceSet& fs = impl_->faces[fi];
     if (fs.empty()) continue;
-    const fp::FaceChart& chart = impl_->charts[fi];
+    const face_geometry::FaceChart& chart = impl_->charts[fi];
     ChartRegion rest = fs.region;
     rest.difference(container.impl_->faces[fi].region);  // exact containment per face
     if (rest.is_empty()) continue;
@@ -567,7 +568,7 @@ std::vector<ReachedPiece> ReachedSet::pieces_outside(const ReachedSet& container
     // sliver beside a goal edge or vertex) is contained, as the tolerance promises; otherwise the whole
     // remainder is reported.
     bool near = true;
-    for (const Points2& piece : fp::convex_pieces(rest)) {
+    for (const Points2& piece : face_geometry::convex_pieces(rest)) {
       std::vector<Vec3> pts;
       for (const Point2& q : piece) pts.push_back(chart.lift_double(q));
       if (!convex_piece_near(pts, container, tol)) {
@@ -645,12 +646,13 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
       bool in_plane = true;
       for (const Vec3& p : region.points) in_plane = in_plane && std::abs(f.normal.dot(p) - f.offset) <= tol;
       if (!in_plane) continue;
-      const fp::FaceChart& chart = rs.impl_->charts[f.id];
+      const face_geometry::FaceChart& chart = rs.impl_->charts[f.id];
       Points2 pts;
       for (const Vec3& p : region.points) pts.push_back(chart.project(p));
-      const Points2 part = fp::clip(fp::convex_hull(pts), rs.impl_->face_polygon[f.id]);
+      const Points2 part = face_geometry::clip(face_geometry::convex_hull(pts), rs.impl_->face_polygon[f.id]);
       if (part.size() >= 3)
-        rs.impl_->add_region(f.id, ChartRegion(fp::to_polygon(part), rs.impl_->charts[f.id].cell), nullptr);
+        rs.impl_->add_region(f.id, ChartRegion(face_geometry::to_polygon(part), rs.impl_->charts[f.id].cell),
+                             nullptr);
       else if (part.size() == 2)
         rs.impl_->add_segment(f.id, part[0], part[1]);
       else if (part.size() == 1)

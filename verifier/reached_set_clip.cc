@@ -9,21 +9,21 @@
 
 namespace cmt {
 
-using fp::ChartRegion;
-using fp::FT;
-using fp::Point2;
-using fp::Points2;
+using face_geometry::ChartRegion;
+using face_geometry::FT;
+using face_geometry::Point2;
+using face_geometry::Points2;
 
 namespace {
 
 // The six closed half-spaces of the box, each as a plane whose positive side is the box's side:
 // x_k - min_k >= 0 and max_k - x_k >= 0 (exact planes through the double bounds).
-std::array<fp::Plane3, 6> box_planes(const AxisBox& box) {
-  std::array<fp::Plane3, 6> out;
+std::array<face_geometry::Plane3, 6> box_planes(const AxisBox& box) {
+  std::array<face_geometry::Plane3, 6> out;
   for (int k = 0; k < 3; ++k) {
     const FT e[3] = {k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0};
-    out[2 * k] = fp::Plane3(e[0], e[1], e[2], -FT(box.min[k]));
-    out[2 * k + 1] = fp::Plane3(-e[0], -e[1], -e[2], FT(box.max[k]));
+    out[2 * k] = face_geometry::Plane3(e[0], e[1], e[2], -FT(box.min[k]));
+    out[2 * k + 1] = face_geometry::Plane3(-e[0], -e[1], -e[2], FT(box.max[k]));
   }
   return out;
 }
@@ -51,9 +51,11 @@ bool box_interval(const AxisBox& box, const Vec3& a, const Vec3& b, double* t0, 
 
 // face ∩ box in the face's chart: the convex face polygon clipped by the box's half-spaces restricted to the
 // face's plane (exact); fewer than 3 points where the plane only touches the box.
-Points2 box_window(const ReachedSet::Impl& in, std::size_t fi, const std::array<fp::Plane3, 6>& planes) {
+Points2 box_window(const ReachedSet::Impl& in, std::size_t fi,
+                   const std::array<face_geometry::Plane3, 6>& planes) {
   Points2 window = in.face_polygon[fi];
-  for (const fp::Plane3& pl : planes) window = fp::clip(window, fp::restrict_to_chart(pl, in.charts[fi]));
+  for (const face_geometry::Plane3& pl : planes)
+    window = face_geometry::clip(window, face_geometry::restrict_to_chart(pl, in.charts[fi]));
   return window;
 }
 
@@ -70,10 +72,10 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
   ReachedSet out(c);
   Impl& o = *out.impl_;
   const Impl& in = *impl_;
-  const std::array<fp::Plane3, 6> planes = box_planes(box);
+  const std::array<face_geometry::Plane3, 6> planes = box_planes(box);
 
   for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
-    const fp::FaceSet& fs = in.faces[fi];
+    const face_geometry::FaceSet& fs = in.faces[fi];
     if (fs.empty()) continue;
     const Points2 window = box_window(in, fi, planes);
     if (window.empty()) continue;
@@ -81,7 +83,7 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
     if (window.size() >= 3) {
       if (!fs.region.is_empty()) {
         ChartRegion part = fs.region;
-        part.intersection(fp::to_polygon(window));
+        part.intersection(face_geometry::to_polygon(window));
         if (!part.is_empty()) o.add_region(f, part, nullptr);
       }
     } else if (!fs.region.is_empty()) {
@@ -91,14 +93,14 @@ ReachedSet ReachedSet::within_box(const AxisBox& box) const {
       else
         o.add_point(f, window[0]);
     }
-    for (const fp::Segment2& s : fs.segments) {
+    for (const face_geometry::Segment2& s : fs.segments) {
       FT t0, t1;
-      if (fp::clip_segment(window, s.source(), s.target(), &t0, &t1))
+      if (face_geometry::clip_segment(window, s.source(), s.target(), &t0, &t1))
         o.add_segment(f, s.source() + (s.target() - s.source()) * t0,
                       s.source() + (s.target() - s.source()) * t1);
     }
     for (const Point2& p : fs.points)
-      if (fp::inside_closed(window, p)) o.add_point(f, p);
+      if (face_geometry::inside_closed(window, p)) o.add_point(f, p);
   }
 
   for (std::size_t ei = 0; ei < in.edges.size(); ++ei) {
@@ -124,22 +126,22 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
   ReachedSet out(c);
   Impl& o = *out.impl_;
   const Impl& in = *impl_;
-  const std::array<fp::Plane3, 6> planes = box_planes(box);
+  const std::array<face_geometry::Plane3, 6> planes = box_planes(box);
 
   for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
-    const fp::FaceSet& fs = in.faces[fi];
+    const face_geometry::FaceSet& fs = in.faces[fi];
     if (fs.empty()) continue;
     const int f = static_cast<int>(fi);
     const Points2 window = box_window(in, fi, planes);
     if (!fs.region.is_empty()) {
       ChartRegion rest = fs.region;
       // A window without area removes nothing from a regularized region.
-      if (window.size() >= 3) rest.difference(fp::to_polygon(window));
+      if (window.size() >= 3) rest.difference(face_geometry::to_polygon(window));
       if (!rest.is_empty()) o.add_region(f, rest, nullptr);
     }
-    for (const fp::Segment2& s : fs.segments) {
+    for (const face_geometry::Segment2& s : fs.segments) {
       FT t0, t1;
-      if (window.empty() || !fp::clip_segment(window, s.source(), s.target(), &t0, &t1)) {
+      if (window.empty() || !face_geometry::clip_segment(window, s.source(), s.target(), &t0, &t1)) {
         o.add_segment(f, s.source(), s.target());
         continue;
       }
@@ -149,7 +151,7 @@ ReachedSet ReachedSet::without_box(const AxisBox& box) const {
       if (t1 < 1) o.add_segment(f, at(t1), s.target());
     }
     for (const Point2& p : fs.points)
-      if (window.empty() || !fp::inside_closed(window, p)) o.add_point(f, p);
+      if (window.empty() || !face_geometry::inside_closed(window, p)) o.add_point(f, p);
   }
 
   for (std::size_t ei = 0; ei < in.edges.size(); ++ei) {
@@ -181,19 +183,21 @@ namespace {
 
 // The part of segment [a, b] in the closed face set `other` (its region's convex pieces, its segments where
 // collinear and overlapping, its points on the segment), added to `out`'s face fi.
-void intersect_segment(const fp::FaceSet& other, int fi, const Point2& a, const Point2& b,
+void intersect_segment(const face_geometry::FaceSet& other, int fi, const Point2& a, const Point2& b,
                        ReachedSet::Impl& out) {
-  const fp::Segment2 seg(a, b);
+  const face_geometry::Segment2 seg(a, b);
   if (!other.region.is_empty())
-    for (const Points2& piece : fp::convex_pieces(other.region)) {
+    for (const Points2& piece : face_geometry::convex_pieces(other.region)) {
       FT t0, t1;
-      if (fp::clip_segment(piece, a, b, &t0, &t1)) out.add_segment(fi, a + t0 * (b - a), a + t1 * (b - a));
+      if (face_geometry::clip_segment(piece, a, b, &t0, &t1))
+        out.add_segment(fi, a + t0 * (b - a), a + t1 * (b - a));
     }
-  for (const fp::Segment2& o : other.segments) {
+  for (const face_geometry::Segment2& o : other.segments) {
     const auto x = CGAL::intersection(seg, o);
     if (!x) continue;
     if (const Point2* p = boost::get<Point2>(&*x)) out.add_point(fi, *p);
-    if (const fp::Segment2* q = boost::get<fp::Segment2>(&*x)) out.add_segment(fi, q->source(), q->target());
+    if (const face_geometry::Segment2* q = boost::get<face_geometry::Segment2>(&*x))
+      out.add_segment(fi, q->source(), q->target());
   }
   for (const Point2& p : other.points)
     if (seg.has_on(p)) out.add_point(fi, p);
@@ -207,8 +211,8 @@ ReachedSet ReachedSet::intersected(const ReachedSet& other) const {
   ReachedSet out(cspace());
   Impl& o = *out.impl_;
   for (std::size_t fi = 0; fi < a.faces.size(); ++fi) {
-    const fp::FaceSet& fa = a.faces[fi];
-    const fp::FaceSet& fb = b.faces[fi];
+    const face_geometry::FaceSet& fa = a.faces[fi];
+    const face_geometry::FaceSet& fb = b.faces[fi];
     if (fa.empty() || fb.empty()) continue;
     const int f = static_cast<int>(fi);
     if (!fa.region.is_empty() && !fb.region.is_empty()) {
@@ -217,9 +221,10 @@ ReachedSet ReachedSet::intersected(const ReachedSet& other) const {
       if (!part.is_empty()) o.add_region(f, part, nullptr);
     }
     // Segments and points of each set against the whole of the other (regions, segments, points).
-    for (const fp::Segment2& seg : fa.segments) intersect_segment(fb, f, seg.source(), seg.target(), o);
-    for (const fp::Segment2& seg : fb.segments) {
-      fp::FaceSet region_only;
+    for (const face_geometry::Segment2& seg : fa.segments)
+      intersect_segment(fb, f, seg.source(), seg.target(), o);
+    for (const face_geometry::Segment2& seg : fb.segments) {
+      face_geometry::FaceSet region_only;
       region_only.region = fa.region;
       intersect_segment(region_only, f, seg.source(), seg.target(), o);
     }

@@ -18,16 +18,17 @@ namespace {
 
 // Distance from q (in the face's plane) to the boundary loops of a region: the nearest point of a closed
 // region to an outside point lies on its boundary, including the boundary of a hole that q is in.
-double distance_to_loops(const Vec3& q, const fp::ChartRegion& region, const fp::FaceChart& chart) {
-  std::vector<fp::PolygonWithHoles2> pwhs;
+double distance_to_loops(const Vec3& q, const face_geometry::ChartRegion& region,
+                         const face_geometry::FaceChart& chart) {
+  std::vector<face_geometry::PolygonWithHoles2> pwhs;
   region.polygons_with_holes(std::back_inserter(pwhs));
   double best = std::numeric_limits<double>::infinity();
-  auto scan = [&](const fp::Polygon2& loop) {
+  auto scan = [&](const face_geometry::Polygon2& loop) {
     for (auto e = loop.edges_begin(); e != loop.edges_end(); ++e)
       best = std::min(best,
                       distance_to_segment(q, chart.lift_double(e->source()), chart.lift_double(e->target())));
   };
-  for (const fp::PolygonWithHoles2& pwh : pwhs) {
+  for (const face_geometry::PolygonWithHoles2& pwh : pwhs) {
     scan(pwh.outer_boundary());
     for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) scan(*h);
   }
@@ -41,7 +42,7 @@ double ReachedSet::distance(const Vec3& p) const {
   const CSpace& c = cspace();
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t fi = 0; fi < im.faces.size(); ++fi) {
-    const fp::FaceSet& fs = im.faces[fi];
+    const face_geometry::FaceSet& fs = im.faces[fi];
     if (fs.empty()) continue;
     const Face& face = c.faces()[fi];
     // Everything on the face lies in its plane: the distance is sqrt(offset^2 + in-plane distance^2) from
@@ -50,17 +51,18 @@ double ReachedSet::distance(const Vec3& p) const {
     const double offset = face.normal.dot(p) - face.offset;
     if (std::abs(offset) >= best) continue;
     const Vec3 q = p - offset * face.normal;
-    const fp::FaceChart& chart = im.charts[fi];
+    const face_geometry::FaceChart& chart = im.charts[fi];
     double in_plane = std::numeric_limits<double>::infinity();
     if (!fs.region.is_empty()) {
       in_plane = fs.region.oriented_side(chart.project(q)) != CGAL::ON_NEGATIVE_SIDE
                      ? 0.0
                      : distance_to_loops(q, fs.region, chart);
     }
-    for (const fp::Segment2& s : fs.segments)
+    for (const face_geometry::Segment2& s : fs.segments)
       in_plane = std::min(
           in_plane, distance_to_segment(q, chart.lift_double(s.source()), chart.lift_double(s.target())));
-    for (const fp::Point2& pt : fs.points) in_plane = std::min(in_plane, (q - chart.lift_double(pt)).norm());
+    for (const face_geometry::Point2& pt : fs.points)
+      in_plane = std::min(in_plane, (q - chart.lift_double(pt)).norm());
     best = std::min(best, std::hypot(offset, in_plane));
   }
   for (std::size_t ei = 0; ei < im.edges.size(); ++ei) {

@@ -8,14 +8,14 @@ namespace cmt {
 
 namespace {
 
-using fp::ChartRegion;
-using fp::Point2;
-using fp::Points2;
-using fp::Polygon2;
+using face_geometry::ChartRegion;
+using face_geometry::Point2;
+using face_geometry::Points2;
+using face_geometry::Polygon2;
 
 // A ring of 3-D points in a face's chart, counter-clockwise; empty when it has no area or, after the
 // rounding to doubles, is not simple.
-Polygon2 chart_ring(const fp::FaceChart& chart, const std::vector<Vec3>& ring) {
+Polygon2 chart_ring(const face_geometry::FaceChart& chart, const std::vector<Vec3>& ring) {
   Points2 pts;
   for (const Vec3& p : ring) pts.push_back(chart.project(p));
   Polygon2 poly(pts.begin(), pts.end());
@@ -27,14 +27,14 @@ Polygon2 chart_ring(const fp::FaceChart& chart, const std::vector<Vec3>& ring) {
 // The face region of a piece of 3+ points: its outer boundary minus its holes (pairwise overlays, so a hole
 // that touches the boundary after rounding is still a valid operand). Where rounding broke a ring, the
 // result stays a superset: an outer boundary becomes its convex hull, a hole is not subtracted.
-ChartRegion face_region(const fp::FaceChart& chart, const ReachedPiece& piece) {
+ChartRegion face_region(const face_geometry::FaceChart& chart, const ReachedPiece& piece) {
   Polygon2 outer = chart_ring(chart, piece.polygon);
   if (outer.is_empty()) {
     Points2 pts;
     for (const Vec3& p : piece.polygon) pts.push_back(chart.project(p));
-    const Points2 hull = fp::convex_hull(pts);
+    const Points2 hull = face_geometry::convex_hull(pts);
     if (hull.size() < 3) return ChartRegion();
-    outer = fp::to_polygon(hull);
+    outer = face_geometry::to_polygon(hull);
   }
   ChartRegion region(outer, chart.cell);
   for (const std::vector<Vec3>& hole : piece.holes) {
@@ -59,7 +59,7 @@ ReachedSet ReachedSet::from_pieces(const CSpace& cspace, const std::vector<Reach
     const int index = cspace.atom_index(piece.atom);
     switch (cspace.atom_kind(piece.atom)) {
       case AtomKind::kFace: {
-        const fp::FaceChart& chart = im.charts[index];
+        const face_geometry::FaceChart& chart = im.charts[index];
         if (piece.polygon.size() >= 3)
           im.add_region(index, face_region(chart, piece), nullptr);
         else if (piece.polygon.size() == 2)

@@ -7,7 +7,7 @@
 
 #include "verifier/internal/face_regions.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 using ClipperLib::cInt;
@@ -256,7 +256,7 @@ ChartRegion ChartRegion::union_of(const std::vector<const ChartRegion*>& parts) 
   return out;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry
 
 namespace cmt {
 

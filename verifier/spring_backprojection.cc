@@ -23,7 +23,7 @@
 namespace cmt {
 namespace {
 
-using namespace fp;
+using namespace face_geometry;
 
 // Offsets of the reach sets' half-spaces are moved outward by this fraction of the scene scale: it covers the
 // rounding of their double normals and offsets (relative 1e-15) and the cone test's tolerance (line_reach).

@@ -22,7 +22,7 @@
 #include <limits>
 #include <numbers>
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -333,4 +333,4 @@ double edge_must_leave_halfwidth(const CSpace& cspace, const Edge& e, double tp,
   return std::sqrt(radius * radius - perp * perp) / (e.b - e.a).norm() - kEdgeParamSlack;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

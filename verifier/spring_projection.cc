@@ -27,7 +27,7 @@
 namespace cmt {
 namespace {
 
-using namespace fp;
+using namespace face_geometry;
 
 // Widening's count of the fixpoint rounds (work items) in which an atom grew
 // (SpringProjector::grew_this_round).

@@ -18,7 +18,7 @@
 #include "verifier/internal/spring_velocity.h"
 #include "verifier/internal/spring_velocity_support.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -196,14 +196,14 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
   return out;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry
 
 namespace cmt {
 
 double spring_spiral_deviation(double theta_v) {
   if (theta_v <= 0) return 0;
   const double T = std::tan(theta_v);
-  return std::max(std::exp(-theta_v / T) * std::sin(theta_v), std::exp(-fp::kPi / (2 * T)));
+  return std::max(std::exp(-theta_v / T) * std::sin(theta_v), std::exp(-face_geometry::kPi / (2 * T)));
 }
 
 }  // namespace cmt

@@ -7,13 +7,13 @@
 #include "verifier/internal/spring_velocity.h"
 #include "verifier/internal/spring_velocity_support.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 Points2 velocity_reach_section(const ReachedSet::Impl& g, int fi, const VelocitySpring& m) {
   return support_section(g, fi, {ball_support(m.p, m.reach)}, false, &m.bounds);
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry
 
 namespace cmt {
 
@@ -33,7 +33,7 @@ double velocity_reach_bound(const CSpace& c, const ReachedSet& start, const Vec3
       const Face& f = c.faces()[i];
       const double depth = f.offset - f.normal.dot(p);
       const Vec3 center = p + depth * f.normal;
-      const double inplane = fp::distance_in_plane(f.polygon, f.normal, center);
+      const double inplane = face_geometry::distance_in_plane(f.polygon, f.normal, center);
       const double h = std::abs(depth) + eps;
       if (std::hypot(depth, inplane) > v + eps) continue;  // not reachable within the bound
       if (inplane > h * T + eps) continue;                 // the zone about p*' misses the face
@@ -60,7 +60,7 @@ double velocity_reach_bound(const CSpace& c, const ReachedSet& start, const Vec3
       }
     }
   }
-  return (v + eps) * (1 + fp::kVelocitySlack) + fp::kVelocitySlack * c.scale();
+  return (v + eps) * (1 + face_geometry::kVelocitySlack) + face_geometry::kVelocitySlack * c.scale();
 }
 
 }  // namespace cmt

@@ -15,7 +15,7 @@
 #include "verifier/internal/spring_velocity.h"
 #include "verifier/internal/spring_velocity_support.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -447,4 +447,4 @@ ChartRegion velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
   return out;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

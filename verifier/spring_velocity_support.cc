@@ -12,7 +12,7 @@
 #include "models/polygon_distance.h"
 #include "verifier/internal/spring_flight.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -306,4 +306,4 @@ void split_source(const std::vector<Vec3>& poly, const Vec3& center, double eps,
   }
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -44,7 +44,7 @@ struct Test {
   bool never_along(const Vec3& u, const std::vector<Vec3>& pts, double d_min) const {
     const double limit = kPi / 2 - theta - std::asin(std::min(1.0, eps / d_min)) - kInvariantAngleMargin;
     for (const Vec3& x : pts)
-      if (fp::angle_between(u, x - p) > limit) return false;
+      if (face_geometry::angle_between(u, x - p) > limit) return false;
     return true;
   }
 
@@ -59,8 +59,8 @@ struct Test {
     for (const Face& f : c.faces()) {
       const Vec3 u = w - w.dot(f.normal) * f.normal;
       if (u.norm() <= 1e-12) continue;  // sliding on f does not move along w
-      std::vector<Vec3> q = fp::clip_halfspace(f.polygon, -w, -lo + tol);
-      if (std::isfinite(hi)) q = fp::clip_halfspace(q, w, hi + tol);
+      std::vector<Vec3> q = face_geometry::clip_halfspace(f.polygon, -w, -lo + tol);
+      if (std::isfinite(hi)) q = face_geometry::clip_halfspace(q, w, hi + tol);
       if (!q.empty() && !never_along(u, q, a0)) return false;
     }
     for (const Edge& e : c.edges()) {

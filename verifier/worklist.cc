@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 DamperWorklist::DamperWorklist(ReachedSet::Impl& set) : reached_impl_(set) {
   const std::size_t nf = set.faces.size();
@@ -115,4 +115,4 @@ std::vector<EdgeInterval> DamperWorklist::take_edge(int ei) {
   return out;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -49,10 +49,10 @@ ViewSpec spec(View view) {
 
 const char* axis_name(int i) { return i == 0 ? "x" : i == 1 ? "y" : "z"; }
 
-Point2 project(const Vec3& p, const ViewSpec& s) { return {p[s.u], p[s.v]}; }
+DataPoint project(const Vec3& p, const ViewSpec& s) { return {p[s.u], p[s.v]}; }
 
-std::vector<Point2> project(const std::vector<Vec3>& pts, const ViewSpec& s) {
-  std::vector<Point2> out;
+std::vector<DataPoint> project(const std::vector<Vec3>& pts, const ViewSpec& s) {
+  std::vector<DataPoint> out;
   out.reserve(pts.size());
   for (const Vec3& p : pts) out.push_back(project(p, s));
   return out;
@@ -65,10 +65,10 @@ Vec3 centroid(const std::vector<Vec3>& pts) {
 }
 
 // Area of the projection in square pixels (shoelace), to tell a polygon from a sliver seen edge-on.
-double pixel_area(const PlotCanvas& canvas, const std::vector<Point2>& pts) {
+double pixel_area(const PlotCanvas& canvas, const std::vector<DataPoint>& pts) {
   double twice = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const Point2 a = canvas.to_image(pts[i]), b = canvas.to_image(pts[(i + 1) % pts.size()]);
+    const DataPoint a = canvas.to_image(pts[i]), b = canvas.to_image(pts[(i + 1) % pts.size()]);
     twice += a.x * b.y - b.x * a.y;
   }
   return std::isfinite(twice) ? 0.5 * std::abs(twice) : 0.0;
@@ -77,7 +77,7 @@ double pixel_area(const PlotCanvas& canvas, const std::vector<Point2>& pts) {
 // Bounding box of everything drawn, in view coordinates.
 struct Box {
   double umin = std::numeric_limits<double>::infinity(), umax = -umin, vmin = umin, vmax = -umin;
-  void add(const Point2& p) {
+  void add(const DataPoint& p) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
     umin = std::min(umin, p.x), umax = std::max(umax, p.x);
     vmin = std::min(vmin, p.y), vmax = std::max(vmax, p.y);
@@ -96,9 +96,9 @@ void set_view_ranges(PlotCanvas& canvas, const CSpaceFigureData& d, const ViewSp
       for (const PredictedPiece& piece : step.termination) {
         for (const Vec3& p : piece.polygon) box.add(project(p, s));
         if (piece.kind == "free" && std::isfinite(piece.radius)) {
-          const Point2 c = project(piece.center, s);
-          box.add(c - Point2(piece.radius, piece.radius));
-          box.add(c + Point2(piece.radius, piece.radius));
+          const DataPoint c = project(piece.center, s);
+          box.add(c - DataPoint(piece.radius, piece.radius));
+          box.add(c + DataPoint(piece.radius, piece.radius));
         }
       }
   if (d.planned)  // the commanded positions, not the cells (which reach the planner's domain box)
@@ -117,7 +117,7 @@ void draw_faces(PlotCanvas& canvas, const CSpace& cspace, const ViewSpec& s) {
     return centroid(a->polygon).dot(s.toward_viewer) < centroid(b->polygon).dot(s.toward_viewer);
   });
   for (const Face* f : faces) {
-    const std::vector<Point2> poly = project(f->polygon, s);
+    const std::vector<DataPoint> poly = project(f->polygon, s);
     const double facing = f->normal.dot(s.toward_viewer);
     if (facing > kEdgeOnCosine) {
       canvas.fill_polygon(poly, {}, kFaceFill);
@@ -133,8 +133,8 @@ void draw_faces(PlotCanvas& canvas, const CSpace& cspace, const ViewSpec& s) {
 // A region (start/goal) or predicted piece given by points: polygon, segment or point. Segments and points
 // are drawn in `line` (a darker shade for predicted edges and vertices, so they stand out on the faces they
 // bound).
-void draw_points_shape(PlotCanvas& canvas, const std::vector<Point2>& pts,
-                       const std::vector<std::vector<Point2>>& holes, const cv::Scalar& fill,
+void draw_points_shape(PlotCanvas& canvas, const std::vector<DataPoint>& pts,
+                       const std::vector<std::vector<DataPoint>>& holes, const cv::Scalar& fill,
                        const cv::Scalar& outline, int outline_thickness, const cv::Scalar& line) {
   if (pts.size() >= 3 && pixel_area(canvas, pts) >= kDegeneratePixelArea) {
     canvas.fill_polygon(pts, holes, fill);
@@ -179,7 +179,7 @@ void draw_prediction(PlotCanvas& canvas, const PredictedSets& prediction, const 
         canvas.circle(project(piece->center, s), piece->radius, darker(color), false, outline);
         continue;
       }
-      std::vector<std::vector<Point2>> holes;
+      std::vector<std::vector<DataPoint>> holes;
       for (const auto& h : piece->holes) holes.push_back(project(h, s));
       draw_points_shape(canvas, project(piece->polygon, s), holes, color, darker(color), outline,
                         darker(color, kPieceLineShade));
@@ -188,7 +188,7 @@ void draw_prediction(PlotCanvas& canvas, const PredictedSets& prediction, const 
 }
 
 void draw_region_outline(PlotCanvas& canvas, const Region& r, const ViewSpec& s, const cv::Scalar& color) {
-  const std::vector<Point2> pts = project(r.points, s);
+  const std::vector<DataPoint> pts = project(r.points, s);
   if (pts.size() == 1)
     canvas.dot(pts[0], kVertexPieceRadius - 2, color);
   else
@@ -231,18 +231,18 @@ void draw_planned(PlotCanvas& canvas, const std::vector<PlannedMotionLayer>& pla
     for (const std::vector<Vec3>& piece : planned[static_cast<std::size_t>(i)].pieces) {
       std::vector<cv::Point2f> projected, hull;
       for (const Vec3& v : piece) {
-        const Point2 p = project(v, s);
+        const DataPoint p = project(v, s);
         projected.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
       }
       if (projected.size() < 2) continue;
       cv::convexHull(projected, hull);
-      std::vector<Point2> outline(hull.begin(), hull.end());
+      std::vector<DataPoint> outline(hull.begin(), hull.end());
       canvas.polyline(outline, true, color, kPlannedCellThickness);
     }
     canvas.marker(project(planned[static_cast<std::size_t>(i)].commanded, s), LegendMarker::kDiamond,
                   kPlannedMarkerRadius, color);
     for (const AxisBox& b : planned[static_cast<std::size_t>(i)].sensed_positions) {
-      const Point2 lo = project(b.min, s), hi = project(b.max, s);
+      const DataPoint lo = project(b.min, s), hi = project(b.max, s);
       canvas.polyline({lo, {hi.x, lo.y}, hi, {lo.x, hi.y}}, true, kSensedPositionsLine,
                       kPlannedCellThickness);
     }
@@ -273,7 +273,7 @@ struct SearchDrawn {
 SearchDrawn draw_search(PlotCanvas& canvas, const SearchLayer& search, const ViewSpec& s) {
   SearchDrawn drawn;
   for (const std::vector<Vec3>& piece : search.unreached_pieces) {
-    const std::vector<Point2> pts = project(piece, s);
+    const std::vector<DataPoint> pts = project(piece, s);
     if (pts.size() == 1)
       canvas.ring(pts[0], kUnreachedVertexRadius, kInk, kUnreachedThickness);
     else if (!pts.empty())
@@ -310,7 +310,7 @@ void add_search_legend(PlotCanvas& canvas, const SearchDrawn& drawn) {
 double projected_area(const std::vector<Vec3>& polygon, const ViewSpec& s) {
   double twice = 0;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const Point2 a = project(polygon[i], s), b = project(polygon[(i + 1) % polygon.size()], s);
+    const DataPoint a = project(polygon[i], s), b = project(polygon[(i + 1) % polygon.size()], s);
     twice += a.x * b.y - b.x * a.y;
   }
   return std::isfinite(twice) ? 0.5 * std::abs(twice) : 0.0;

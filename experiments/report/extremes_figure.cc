@@ -22,14 +22,14 @@ double number_or(const json& j, const char* key, double fallback) {
 }
 
 // (distance outside in eps_p, success rate) for the trials with rollouts.
-std::vector<Point2> motion_curve(const json& motion) {
-  std::vector<Point2> points;
+std::vector<DataPoint> motion_curve(const json& motion) {
+  std::vector<DataPoint> points;
   const json& vertices = motion.value("vertices", json());
   if (number_or(vertices, "rollouts", 0) > 0) points.push_back({0, number_or(vertices, "rate", 0)});
   for (const json& g : motion.value("grown", json::array()))
     if (number_or(g, "rollouts", 0) > 0)
       points.push_back({number_or(g, "factor", 0), number_or(g, "rate", 0)});
-  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) { return a.x < b.x; });
+  std::sort(points.begin(), points.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
   return points;
 }
 
@@ -39,14 +39,14 @@ std::optional<PlotCanvas> draw_extremes_figure(const json& run, const std::strin
                                                const FigureSize& size) {
   if (!run.is_object() || !run.contains("extremes") || !run["extremes"].is_object()) return std::nullopt;
   const json& motions = run["extremes"].value("motions", json::array());
-  std::vector<std::vector<Point2>> curves;
+  std::vector<std::vector<DataPoint>> curves;
   std::vector<std::string> names;
   double x_max = 1;
   for (const json& m : motions) {
     curves.push_back(motion_curve(m));
     names.push_back(m.value("motion", std::string("?")) +
                     (m.value("claims_cell", false) ? " (cell)" : " (a point)"));
-    for (const Point2& p : curves.back()) x_max = std::max(x_max, p.x);
+    for (const DataPoint& p : curves.back()) x_max = std::max(x_max, p.x);
   }
   if (std::all_of(curves.begin(), curves.end(), [](const auto& c) { return c.empty(); })) return std::nullopt;
   PlotCanvas canvas(
@@ -59,7 +59,7 @@ std::optional<PlotCanvas> draw_extremes_figure(const json& run, const std::strin
     const cv::Scalar& color = kCurveColors[i % kCurveStyles];
     const LegendMarker marker = kCurveMarkers[i % kCurveStyles];
     if (curves[i].size() > 1) canvas.polyline(curves[i], false, color, 2);
-    for (const Point2& p : curves[i]) canvas.marker(p, marker, kMarkerRadiusPx, color);
+    for (const DataPoint& p : curves[i]) canvas.marker(p, marker, kMarkerRadiusPx, color);
     canvas.add_legend({names[i], color, marker});
   }
   canvas.add_legend(

@@ -64,11 +64,11 @@ std::optional<PlotCanvas> draw_plan_graph(const json& run, const std::string& ti
   canvas.set_ranges({-0.5, columns + 0.5}, {-rows - 0.5, 0.5}, true);
   const auto at = [&](int i) {
     const PlanGraphNode& n = g.nodes[static_cast<std::size_t>(i)];
-    return Point2{static_cast<double>(n.column), -static_cast<double>(n.row)};
+    return DataPoint{static_cast<double>(n.column), -static_cast<double>(n.row)};
   };
   for (const PlanGraphEdge& e : g.edges) {  // from the right side of one box to the left side of the next
-    const Point2 a = at(e.from), b = at(e.to);
-    const Point2 start{a.x + kPlanNodeHalfWidth, a.y}, end{b.x - kPlanNodeHalfWidth, b.y};
+    const DataPoint a = at(e.from), b = at(e.to);
+    const DataPoint start{a.x + kPlanNodeHalfWidth, a.y}, end{b.x - kPlanNodeHalfWidth, b.y};
     canvas.polyline({start, end}, false, kInk, 2);
     const double dx = end.x - start.x, dy = end.y - start.y, len = std::max(1e-9, std::hypot(dx, dy));
     const double ux = dx / len, uy = dy / len;
@@ -81,8 +81,8 @@ std::optional<PlotCanvas> draw_plan_graph(const json& run, const std::string& ti
   }
   for (std::size_t i = 0; i < g.nodes.size(); ++i) {
     const PlanGraphNode& n = g.nodes[i];
-    const Point2 c = at(static_cast<int>(i));
-    const Point2 lo{c.x - kPlanNodeHalfWidth, c.y - kPlanNodeHalfHeight},
+    const DataPoint c = at(static_cast<int>(i));
+    const DataPoint lo{c.x - kPlanNodeHalfWidth, c.y - kPlanNodeHalfHeight},
         hi{c.x + kPlanNodeHalfWidth, c.y + kPlanNodeHalfHeight};
     canvas.rectangle(lo, hi, n.goal ? kGoalFill : kStateFill);
     canvas.polyline({lo, {hi.x, lo.y}, hi, {lo.x, hi.y}}, true, n.goal ? kGoalLine : kStateLine, 2);

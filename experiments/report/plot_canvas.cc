@@ -20,7 +20,7 @@ constexpr int kLegendGap = 14;  // px between the plot area and the legend box
 constexpr int kXTicks = 7;      // about this many ticks per axis
 constexpr int kYTicks = 6;
 
-bool finite(const Point2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+bool finite(const DataPoint& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 Range sane(Range r) {
   if (!std::isfinite(r.min) || !std::isfinite(r.max)) return {-1, 1};
@@ -57,13 +57,13 @@ void PlotCanvas::set_ranges(Range x, Range y, bool equal_aspect) {
     x_ = widen(x_, uy * (plot_.width - 1));
 }
 
-Point2 PlotCanvas::to_image(const Point2& p) const {
+DataPoint PlotCanvas::to_image(const DataPoint& p) const {
   return {plot_.x + (p.x - x_.min) / (x_.max - x_.min) * (plot_.width - 1),
           plot_.y + (y_.max - p.y) / (y_.max - y_.min) * (plot_.height - 1)};
 }
 
-cv::Point PlotCanvas::pixel(const Point2& p) const {
-  const Point2 q = to_image(p) - Point2(plot_.x, plot_.y);
+cv::Point PlotCanvas::pixel(const DataPoint& p) const {
+  const DataPoint q = to_image(p) - DataPoint(plot_.x, plot_.y);
   return {static_cast<int>(std::lround(std::clamp(q.x, -kPixelClamp, kPixelClamp))),
           static_cast<int>(std::lround(std::clamp(q.y, -kPixelClamp, kPixelClamp)))};
 }
@@ -75,11 +75,11 @@ void PlotCanvas::grid() {
     cv::line(area_, pixel({x_.min, t}), pixel({x_.max, t}), kGrid, 1);
 }
 
-void PlotCanvas::fill_polygon(const std::vector<Point2>& outer, const std::vector<std::vector<Point2>>& holes,
-                              const cv::Scalar& color) {
-  auto to_pixels = [&](const std::vector<Point2>& pts) {
+void PlotCanvas::fill_polygon(const std::vector<DataPoint>& outer,
+                              const std::vector<std::vector<DataPoint>>& holes, const cv::Scalar& color) {
+  auto to_pixels = [&](const std::vector<DataPoint>& pts) {
     std::vector<cv::Point> out;
-    for (const Point2& p : pts)
+    for (const DataPoint& p : pts)
       if (finite(p)) out.push_back(pixel(p));
     return out;
   };
@@ -99,10 +99,10 @@ void PlotCanvas::fill_polygon(const std::vector<Point2>& outer, const std::vecto
   area_.setTo(color, mask);
 }
 
-void PlotCanvas::polyline(const std::vector<Point2>& points, bool closed, const cv::Scalar& color,
+void PlotCanvas::polyline(const std::vector<DataPoint>& points, bool closed, const cv::Scalar& color,
                           int thickness) {
   std::vector<cv::Point> px;
-  for (const Point2& p : points)
+  for (const DataPoint& p : points)
     if (finite(p)) px.push_back(pixel(p));
   if (px.empty()) return;
   if (px.size() == 1) {
@@ -112,7 +112,7 @@ void PlotCanvas::polyline(const std::vector<Point2>& points, bool closed, const 
   cv::polylines(area_, std::vector<std::vector<cv::Point>>{px}, closed, color, thickness, cv::LINE_8);
 }
 
-void PlotCanvas::dashed_line(const Point2& a, const Point2& b, const cv::Scalar& color, int thickness,
+void PlotCanvas::dashed_line(const DataPoint& a, const DataPoint& b, const cv::Scalar& color, int thickness,
                              int dash_px) {
   if (!finite(a) || !finite(b)) return;
   const cv::Point pa = pixel(a), pb = pixel(b);
@@ -129,11 +129,11 @@ void PlotCanvas::dashed_line(const Point2& a, const Point2& b, const cv::Scalar&
   }
 }
 
-void PlotCanvas::dot(const Point2& p, int radius_px, const cv::Scalar& color) {
+void PlotCanvas::dot(const DataPoint& p, int radius_px, const cv::Scalar& color) {
   if (finite(p)) cv::circle(area_, pixel(p), radius_px, color, cv::FILLED, cv::LINE_8);
 }
 
-void PlotCanvas::cross(const Point2& p, int half_px, const cv::Scalar& color, int thickness) {
+void PlotCanvas::cross(const DataPoint& p, int half_px, const cv::Scalar& color, int thickness) {
   if (!finite(p)) return;
   const cv::Point c = pixel(p);
   cv::line(area_, c + cv::Point(-half_px, -half_px), c + cv::Point(half_px, half_px), color, thickness,
@@ -142,26 +142,27 @@ void PlotCanvas::cross(const Point2& p, int half_px, const cv::Scalar& color, in
            cv::LINE_8);
 }
 
-void PlotCanvas::circle(const Point2& center, double r, const cv::Scalar& color, bool fill, int thickness) {
+void PlotCanvas::circle(const DataPoint& center, double r, const cv::Scalar& color, bool fill,
+                        int thickness) {
   if (!finite(center) || !std::isfinite(r) || r < 0) return;
   const double px_per_unit = (plot_.width - 1) / (x_.max - x_.min);
   const int radius = static_cast<int>(std::lround(std::min(r * px_per_unit, kPixelClamp)));
   cv::circle(area_, pixel(center), std::max(1, radius), color, fill ? cv::FILLED : thickness, cv::LINE_8);
 }
 
-void PlotCanvas::ring(const Point2& p, int radius_px, const cv::Scalar& color, int thickness) {
+void PlotCanvas::ring(const DataPoint& p, int radius_px, const cv::Scalar& color, int thickness) {
   if (finite(p)) cv::circle(area_, pixel(p), std::max(1, radius_px), color, thickness, cv::LINE_8);
 }
 
-void PlotCanvas::rectangle(const Point2& a, const Point2& b, const cv::Scalar& color) {
+void PlotCanvas::rectangle(const DataPoint& a, const DataPoint& b, const cv::Scalar& color) {
   if (finite(a) && finite(b)) cv::rectangle(area_, pixel(a), pixel(b), color, cv::FILLED, cv::LINE_8);
 }
 
-void PlotCanvas::marker(const Point2& p, LegendMarker shape, int radius_px, const cv::Scalar& color) {
+void PlotCanvas::marker(const DataPoint& p, LegendMarker shape, int radius_px, const cv::Scalar& color) {
   if (finite(p)) draw_point_marker(area_, pixel(p), shape, radius_px, color);
 }
 
-void PlotCanvas::text(const Point2& p, const std::string& label, const cv::Point& offset_px,
+void PlotCanvas::text(const DataPoint& p, const std::string& label, const cv::Point& offset_px,
                       TextAnchor anchor, const cv::Scalar& color) {
   if (!finite(p)) return;
   int baseline = 0;

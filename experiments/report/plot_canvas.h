@@ -24,7 +24,7 @@ struct Range {
   double min = 0, max = 1;
 };
 
-using Point2 = cv::Point2d;  // a point in data coordinates
+using DataPoint = cv::Point2d;  // a point in data coordinates
 
 // Figure size and margins in pixels.
 struct FigureSize {
@@ -45,25 +45,26 @@ class PlotCanvas {
   const Range& y_range() const { return y_; }
 
   // Pixel of a data point in the whole image (sub-pixel; draw calls round).
-  Point2 to_image(const Point2& p) const;
+  DataPoint to_image(const DataPoint& p) const;
 
   // Drawing in data coordinates, clipped to the plot area. Non-finite points are skipped.
   void grid();  // light lines at the ticks, behind the data
-  void fill_polygon(const std::vector<Point2>& outer, const std::vector<std::vector<Point2>>& holes,
+  void fill_polygon(const std::vector<DataPoint>& outer, const std::vector<std::vector<DataPoint>>& holes,
                     const cv::Scalar& color);
-  void polyline(const std::vector<Point2>& points, bool closed, const cv::Scalar& color, int thickness);
-  void dashed_line(const Point2& a, const Point2& b, const cv::Scalar& color, int thickness, int dash_px = 8);
-  void dot(const Point2& p, int radius_px, const cv::Scalar& color);
-  void cross(const Point2& p, int half_px, const cv::Scalar& color, int thickness);
+  void polyline(const std::vector<DataPoint>& points, bool closed, const cv::Scalar& color, int thickness);
+  void dashed_line(const DataPoint& a, const DataPoint& b, const cv::Scalar& color, int thickness,
+                   int dash_px = 8);
+  void dot(const DataPoint& p, int radius_px, const cv::Scalar& color);
+  void cross(const DataPoint& p, int half_px, const cv::Scalar& color, int thickness);
   // A circle of data radius r (equal-aspect plots only), filled when fill is true.
-  void circle(const Point2& center, double r, const cv::Scalar& color, bool fill, int thickness = 1);
+  void circle(const DataPoint& center, double r, const cv::Scalar& color, bool fill, int thickness = 1);
   // A circle outline of radius_px pixels around p (a marker that keeps its size at any scale).
-  void ring(const Point2& p, int radius_px, const cv::Scalar& color, int thickness);
-  void rectangle(const Point2& a, const Point2& b, const cv::Scalar& color);  // filled
+  void ring(const DataPoint& p, int radius_px, const cv::Scalar& color, int thickness);
+  void rectangle(const DataPoint& a, const DataPoint& b, const cv::Scalar& color);  // filled
   // A point marker as the legend draws it (plot_legend.h draw_point_marker), radius_px around p.
-  void marker(const Point2& p, LegendMarker shape, int radius_px, const cv::Scalar& color);
+  void marker(const DataPoint& p, LegendMarker shape, int radius_px, const cv::Scalar& color);
   // A small text label (plot_style.h kDataLabelScale) anchored offset_px away from p.
-  void text(const Point2& p, const std::string& label, const cv::Point& offset_px, TextAnchor anchor,
+  void text(const DataPoint& p, const std::string& label, const cv::Point& offset_px, TextAnchor anchor,
             const cv::Scalar& color);
 
   void add_legend(LegendEntry entry) { legend_.push_back(std::move(entry)); }
@@ -78,7 +79,7 @@ class PlotCanvas {
   nlohmann::json layout() const;
 
  private:
-  cv::Point pixel(const Point2& p) const;  // in plot-area coordinates, rounded and clamped to int range
+  cv::Point pixel(const DataPoint& p) const;  // in plot-area coordinates, rounded and clamped to int range
   void draw_axes();
 
   FigureSize size_;

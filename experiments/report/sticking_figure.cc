@@ -144,7 +144,7 @@ void draw_counts(PlotCanvas& canvas, std::vector<Marker> markers) {
   std::sort(markers.begin(), markers.end(), higher);  // top down
   double free_from = -1e9;                            // px: the highest pixel row the next count may use
   for (const Marker& m : markers) {
-    const Point2 p(m.bin->centre(), m.bin->fraction());
+    const DataPoint p(m.bin->centre(), m.bin->fraction());
     const double y = canvas.to_image(p).y;
     const double label_y = std::max(y, free_from);
     free_from = label_y + kCountSpacing;

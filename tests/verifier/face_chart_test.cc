@@ -14,9 +14,9 @@ TEST(FaceChart, DegenerateFaceLiftsOntoItsOwnPlane) {
   f.normal = Vec3(0, 0, 1);
   f.offset = 5;
   f.polygon = {Vec3(0, 0, 5), Vec3(1, 0, 5)};
-  const fp::FaceChart chart = fp::make_chart(f);
+  const face_geometry::FaceChart chart = face_geometry::make_chart(f);
   EXPECT_EQ(chart.drop, 2);
-  const fp::Point3 p = chart.lift(fp::Point2(0.5, 0.25));
+  const face_geometry::Point3 p = chart.lift(face_geometry::Point2(0.5, 0.25));
   EXPECT_EQ(CGAL::to_double(p.z()), 5.0);
   EXPECT_EQ(CGAL::to_double(p.x()), 0.5);
 }
@@ -26,8 +26,8 @@ TEST(FaceChart, CollinearCornersUseTheFacePlane) {
   f.normal = Vec3(1, 0, 0);
   f.offset = -2;
   f.polygon = {Vec3(-2, 0, 0), Vec3(-2, 1, 1), Vec3(-2, 2, 2)};  // collinear: no plane through them
-  const fp::FaceChart chart = fp::make_chart(f);
-  const fp::Point3 p = chart.lift(fp::Point2(3, 4));
+  const face_geometry::FaceChart chart = face_geometry::make_chart(f);
+  const face_geometry::Point3 p = chart.lift(face_geometry::Point2(3, 4));
   EXPECT_EQ(CGAL::to_double(p.x()), -2.0);
 }
 

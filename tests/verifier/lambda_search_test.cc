@@ -8,7 +8,7 @@
 
 #include "verifier/internal/spring_velocity.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 TEST(LambdaSearch, FindsTheMinimumOfAConvexFunctionFromAnyGuess) {
@@ -56,4 +56,4 @@ TEST(LambdaSearch, AWarmStartNeedsFewerEvaluations) {
 }
 
 }  // namespace
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

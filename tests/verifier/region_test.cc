@@ -12,7 +12,7 @@
 
 #include "verifier/internal/face_regions.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 namespace {
 
 using ExactSet = CGAL::Polygon_set_2<Kernel>;
@@ -213,4 +213,4 @@ TEST(ChartRegion, TheCellFollowsTheSceneScale) {
 }
 
 }  // namespace
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

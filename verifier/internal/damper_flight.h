@@ -6,7 +6,7 @@
 
 #include "verifier/internal/face_regions.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // Rays of a polygonal cone containing cone(v, theta_v): the regular kFlightConeRays-gon circumscribing the
 // circle of radius tan(theta_v + kFlightAngleSlack) at unit height along v. Each ray has v-component 1.
@@ -75,4 +75,4 @@ inline constexpr double kUmbraRelativeMargin = 1e-9;
 std::vector<FlightHit> fly(const ReachedSet::Impl& geometry, const FlightSource& source,
                            const FlightCone& cone);
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -1,5 +1,7 @@
 // Private to verifier/ .cc files (CGAL stays out of public headers): exact 2-D charts of faces, convex
-// polygon clipping, and the representation behind ReachedSet.
+// polygon clipping, and the representation behind ReachedSet. Namespace cmt::face_geometry holds the
+// verifier's internals built on them (regions, flights, slides, sweeps); its kernel is the exact kernel of
+// models/internal/exact_kernel.h (the same CGAL Epeck types).
 #pragma once
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -12,7 +14,7 @@
 #include "models/cspace.h"
 #include "verifier/reached_set.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using FT = Kernel::FT;
@@ -134,28 +136,28 @@ struct FaceSet {
   bool empty() const { return region.is_empty() && segments.empty() && points.empty(); }
 };
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry
 
 namespace cmt {
 
 struct ReachedSet::Impl {
   const CSpace* cspace = nullptr;
-  std::vector<fp::FaceChart> charts;             // per face index
-  std::vector<fp::Points2> face_polygon;         // per face index, counter-clockwise in the chart
-  std::vector<fp::FaceSet> faces;                // per face index
-  std::vector<std::vector<EdgeInterval>> edges;  // per edge index, sorted, disjoint
-  std::vector<char> vertices;                    // per vertex index
+  std::vector<face_geometry::FaceChart> charts;      // per face index
+  std::vector<face_geometry::Points2> face_polygon;  // per face index, counter-clockwise in the chart
+  std::vector<face_geometry::FaceSet> faces;         // per face index
+  std::vector<std::vector<EdgeInterval>> edges;      // per edge index, sorted, disjoint
+  std::vector<char> vertices;                        // per vertex index
 
   explicit Impl(const CSpace& c);
   // Each returns true when the set grew (add_region: by a part wider than kRegionGrowthCells, which it
   // returns in `added`; narrower growth is stored all the same). Inputs are in the face's chart.
-  bool add_region(int face_index, const fp::ChartRegion& part, fp::ChartRegion* added);
-  bool add_segment(int face_index, const fp::Point2& a, const fp::Point2& b);
-  bool add_point(int face_index, const fp::Point2& p);
+  bool add_region(int face_index, const face_geometry::ChartRegion& part, face_geometry::ChartRegion* added);
+  bool add_segment(int face_index, const face_geometry::Point2& a, const face_geometry::Point2& b);
+  bool add_point(int face_index, const face_geometry::Point2& p);
   // Returns the length (in t) of what was new, and the new sub-intervals.
   double add_interval(int edge_index, double t0, double t1, std::vector<EdgeInterval>* added);
   bool add_vertex(int vertex_index);
-  bool covered(int face_index, const fp::Point2& p) const;
+  bool covered(int face_index, const face_geometry::Point2& p) const;
 };
 
 // Parameter slack of edge intervals: endpoints are rounded outward by this much (t is a fraction of the

@@ -4,7 +4,7 @@
 
 #include "models/cspace.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // Step A's in-plane sweep on one face: none, the whole face, or the wedge W of directions b_minus..b_plus.
 struct Sweep {
@@ -19,4 +19,4 @@ struct Sweep {
 // half-angle covers both (and any mix: W is a convex cone).
 Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale);
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -4,7 +4,7 @@
 // soundly).
 #pragma once
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 template <class FacePending, class ProcessFace, class EdgePending, class ProcessEdge, class VertexPending,
           class ProcessVertex>
@@ -34,4 +34,4 @@ bool sweep_until_stable(int faces, int edges, int vertices, const int& steps, in
   return progress;
 }
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -6,7 +6,7 @@
 
 #include "verifier/internal/damper_flight.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // Sides of the polygons circumscribing the eps_t disks and the overshoot disk (outer approximations).
 inline constexpr int kSpringDiskSides = 24;
@@ -69,4 +69,4 @@ std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double 
 // conv(points) ⊕ conv(offsets), rounded outward to double vertices (a superset of the exact sum).
 Points2 minkowski_outward(const Points2& points, const std::vector<Vector2>& offsets);
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -21,7 +21,7 @@
 #include "verifier/internal/spring_velocity_support.h"
 #include "verifier/spring_projection.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // A cone whose half-angle reaches pi/2 − this (rad) is not used as a bound (it would not be pointed).
 inline constexpr double kVelocityPointedMargin = 0.05;
@@ -64,4 +64,4 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std:
 ChartRegion velocity_slide(const ReachedSet::Impl& geometry, int fi, const Points2& part,
                            const VelocitySpring& m, Points2* lower);
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

@@ -11,7 +11,7 @@
 #include "verifier/internal/face_regions.h"
 #include "verifier/polyhedron.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // Relative slack on angles, radii and bounds computed in floating point (all rounded toward "more").
 inline constexpr double kVelocitySlack = 1e-9;
@@ -70,4 +70,4 @@ double distance_in_plane(const std::vector<Vec3>& poly, const Vec3& n, const Vec
 void split_source(const std::vector<Vec3>& poly, const Vec3& center, double eps, double radial_limit,
                   double margin, const std::function<void(const std::vector<Vec3>&, double)>& take);
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry

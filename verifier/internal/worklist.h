@@ -7,7 +7,7 @@
 #include "verifier/internal/face_regions.h"
 #include "verifier/internal/fixpoint.h"
 
-namespace cmt::fp {
+namespace cmt::face_geometry {
 
 // A face part's boundary on the face's edges and vertices (the same points): each edge's parameter interval
 // inside a part (rounded outward by kEdgeParamSlack) and each vertex inside one.
@@ -74,4 +74,4 @@ class DamperWorklist {
   std::vector<char> vertex_;
 };
 
-}  // namespace cmt::fp
+}  // namespace cmt::face_geometry
