@@ -1,36 +1,15 @@
-// The error every bad-input path raises: it names the file, the YAML key path and the reason
-// (docs/task-format.md "Validation"); the cmt program turns it into exit status 2. A YAML syntax error also
-// carries where in the text it is (1-based line and column).
+// The error of a bad task file (docs/task-format.md "Validation"): the file, the YAML key path and the
+// reason, and for a YAML syntax error where in the text it is. An InputError (models/input_error.h), so that
+// one handler reports every bad input.
 #pragma once
 
-#include <stdexcept>
-#include <string>
+#include "models/input_error.h"
 
 namespace cmt {
 
-struct TextLocation {
-  int line = 0;  // 1-based; 0 = no location
-  int column = 0;
-  std::string text() const { return "line " + std::to_string(line) + ", column " + std::to_string(column); }
-};
-
-class TaskError : public std::runtime_error {
+class TaskError : public InputError {
  public:
-  TaskError(std::string file, std::string key, std::string reason, TextLocation where = {})
-      : std::runtime_error(file + ": " + (where.line > 0 ? where.text() + ": " : std::string()) +
-                           (key.empty() ? std::string("(top level)") : key) + ": " + reason),
-        file_(std::move(file)),
-        key_(std::move(key)),
-        reason_(std::move(reason)),
-        where_(where) {}
-  const std::string& file() const { return file_; }
-  const std::string& key() const { return key_; }
-  const std::string& reason() const { return reason_; }
-  const TextLocation& where() const { return where_; }
-
- private:
-  std::string file_, key_, reason_;
-  TextLocation where_;
+  using InputError::InputError;
 };
 
 }  // namespace cmt

@@ -19,8 +19,8 @@
 #include "experiments/teach/backprojection_check.h"
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
+#include "models/input_error.h"
 #include "models/loaded_task.h"
-#include "models/task_error.h"
 #include "verifier/backprojection.h"
 #include "verifier/verify.h"
 
@@ -45,13 +45,13 @@ std::vector<std::string> split_names(const std::string& list) {
 // stops by sticking only).
 std::vector<std::string> chain_of(const LoadedTask& task, const BackprojectCli& cli) {
   const std::vector<std::string> chain = split_names(cli.motions);
-  if (chain.empty()) throw TaskError(cli.task, "--motions", "give one or more motions, first first");
+  if (chain.empty()) throw InputError(cli.task, "--motions", "give one or more motions, first first");
   for (const std::string& name : chain) {
     const Motion* m = task.task.find_motion(name);
-    if (!m) throw TaskError(cli.task, "motions." + name, "no such motion (--motions)");
+    if (!m) throw InputError(cli.task, "motions." + name, "no such motion (--motions)");
     if (m->terminate.any())
-      throw TaskError(cli.task, "motions." + name + ".terminate",
-                      "sensing termination: the backprojection base counts stops by sticking only");
+      throw InputError(cli.task, "motions." + name + ".terminate",
+                       "sensing termination: the backprojection base counts stops by sticking only");
   }
   return chain;
 }
@@ -98,9 +98,9 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   const auto task = load_task_from_string(text, cli.task);
   const std::vector<std::string> chain = chain_of(*task, cli);
   if (cli.check > 0 && has_spring(*task, chain) && has_damper(*task, chain))
-    throw TaskError(cli.task, "--check",
-                    "a chain of dampers and springs: the check runs a spring's chain in the position form, "
-                    "which has no damper");
+    throw InputError(cli.task, "--check",
+                     "a chain of dampers and springs: the check runs a spring's chain in the position form, "
+                     "which has no damper");
   const AtomCones cones(task->cspace);
   const double kappa = kStopRelativeSpeed;
   // S keeps the rollouts' contact resolution from W: their contact lets the robot sink and rise by about the

@@ -29,7 +29,7 @@ int report_bad_input(const std::string& message, bool json, const std::string& f
 
 std::string read_task_text(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw TaskError(path, "", "cannot open the file");
+  if (!in) throw InputError(path, "", "cannot open the file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();

@@ -6,7 +6,7 @@
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"cmt - compliant motion testbed: Buckley's verifier checked by MuJoCo rollouts"};
@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return cmt::report_bad_input(std::string("usage: ") + e.what() + " (see cmt --help)", wants_json);
-  } catch (const cmt::TaskError& e) {
+  } catch (const cmt::InputError& e) {
     return cmt::report_bad_input(e.what(), wants_json, e.file(), e.key(), e.reason(), e.where());
   } catch (const std::exception& e) {
     // Anything else is an I/O failure on the user's paths or a bug: still no crash, and the message says

@@ -1,5 +1,5 @@
 // Each cmt subcommand lives in its own file and registers itself on the CLI11 app with an add_*_command
-// function; its callback runs the command and stores the exit status here. Errors are thrown (TaskError for
+// function; its callback runs the command and stores the exit status here. Errors are thrown (InputError for
 // bad input) and turned into exit status 2 by cmt_main.cc.
 #pragma once
 

@@ -19,8 +19,8 @@
 #include "experiments/plan/extreme_points.h"
 #include "experiments/validation/validation.h"
 #include "experiments/validation/verifier_model.h"
+#include "models/input_error.h"
 #include "models/loaded_task.h"
-#include "models/task_error.h"
 #include "verifier/planner/goal_stops.h"
 #include "verifier/planner/primitive_states.h"
 #include "verifier/planner/search.h"
@@ -163,7 +163,7 @@ std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::st
   }
   if (!cli.out.empty()) {
     std::ofstream file(cli.out);
-    if (!(file << planned)) throw TaskError(cli.out, "-o", "cannot write the planned task");
+    if (!(file << planned)) throw InputError(cli.out, "-o", "cannot write the planned task");
     out["written"] = cli.out;
   }
   return planned_task;
@@ -195,8 +195,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   const std::string text = text_with_overrides(cli);
   const auto task = load_task_from_string(text, cli.task);
   if (task->task.dimension != 3)
-    throw TaskError(cli.task, "dimension",
-                    "the planner needs a 3-D task (its commanded positions vary in y)");
+    throw InputError(cli.task, "dimension",
+                     "the planner needs a 3-D task (its commanded positions vary in y)");
   const CSpace& c = task->cspace;
   const Uncertainty& u = task->task.uncertainty;
   planner::PlanRequest request;

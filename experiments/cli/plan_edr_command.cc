@@ -16,8 +16,8 @@
 #include "experiments/edr/edr_plan_task.h"
 #include "experiments/edr/edr_verdict.h"
 #include "experiments/validation/verifier_model.h"
+#include "models/input_error.h"
 #include "models/model_error.h"
-#include "models/task_error.h"
 #include "models/task_loader.h"
 #include "verifier/edr/edr_plan.h"
 
@@ -58,7 +58,7 @@ nlohmann::json plan_json(const PlanEdrCli& cli, const Task& task, const std::str
   out["verdict"] = edr_verdict_json(planned_task, request, plan.verdict);
   if (!cli.out.empty()) {
     std::ofstream file(cli.out);
-    if (!(file << planned)) throw TaskError(cli.out, "-o", "cannot write the planned task");
+    if (!(file << planned)) throw InputError(cli.out, "-o", "cannot write the planned task");
     out["written"] = cli.out;
   }
   out["seconds"] = seconds;
@@ -82,7 +82,7 @@ void run_plan_edr(const PlanEdrCli& cli, CommandState& state) {
     try {
       model_slices(task->task, resolution);
     } catch (const std::invalid_argument& e) {  // too many slices
-      throw TaskError(cli.task, option, e.what());
+      throw InputError(cli.task, option, e.what());
     }
   }
   const EdrPlan plan = plan_edr(task->task, with_dampers, options);

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 
@@ -32,8 +32,9 @@ std::size_t parameter_index(const Task& task, const std::string& name) {
     if (task.model_error[p].name == name) return p;
     names += (names.empty() ? "" : ", ") + task.model_error[p].name;
   }
-  throw TaskError(task.source_file, "--world",
-                  "no model parameter '" + name + "' (the task's: " + (names.empty() ? "none" : names) + ")");
+  throw InputError(
+      task.source_file, "--world",
+      "no model parameter '" + name + "' (the task's: " + (names.empty() ? "none" : names) + ")");
 }
 
 double parameter_value(const Task& task, const std::string& item, const std::string& text) {
@@ -45,7 +46,7 @@ double parameter_value(const Task& task, const std::string& item, const std::str
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v))
-    throw TaskError(task.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
+    throw InputError(task.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
   return v;
 }
 
@@ -60,16 +61,16 @@ std::shared_ptr<const LoadedTask> task_in_world(std::shared_ptr<const LoadedTask
   for (const std::string& item : world) {
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos)
-      throw TaskError(t.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
+      throw InputError(t.source_file, "--world", "expected NAME=NUMBER, got '" + item + "'");
     const std::size_t p = parameter_index(t, item.substr(0, eq));
     values[p] = parameter_value(t, item, item.substr(eq + 1));
     const ModelParameter& m = t.model_error[p];
     if (!m.admits(values[p]))
-      throw TaskError(t.source_file, "--world",
-                      m.name + " = " + item.substr(eq + 1) +
-                          (m.discrete() ? " is not one of its values"
-                                        : " is outside its interval [" + std::to_string(m.min) + ", " +
-                                              std::to_string(m.max) + "]"));
+      throw InputError(t.source_file, "--world",
+                       m.name + " = " + item.substr(eq + 1) +
+                           (m.discrete() ? " is not one of its values"
+                                         : " is outside its interval [" + std::to_string(m.min) + ", " +
+                                               std::to_string(m.max) + "]"));
   }
   return load_task_slice(t, values);
 }

@@ -19,7 +19,7 @@ void check_rollout_sampling_options(int n, int threads);
 
 // `--world NAME=VALUE` (repeatable): the task read at those model-error values (load_task_slice), the other
 // parameters at their nominal values; the task itself when `world` is empty. A name the task's model_error
-// lacks, a malformed item or a value outside its interval is a TaskError naming --world.
+// lacks, a malformed item or a value outside its interval is a InputError naming --world.
 std::shared_ptr<const LoadedTask> task_in_world(std::shared_ptr<const LoadedTask> task,
                                                 const std::vector<std::string>& world);
 

@@ -13,7 +13,7 @@
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
 #include "experiments/cli/rollout_cli.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "sim/error_vector.h"
 #include "sim/rollout.h"
 
@@ -200,9 +200,9 @@ SimOptions rollout_sim_options(const RolloutCli& o, const LoadedTask& task, cons
     for (const std::string& name : strategy.motions) {
       const Motion* m = task.task.find_motion(name);
       if (m != nullptr && m->kind == Motion::Kind::kDamper)
-        throw TaskError(task.task.source_file, "motions." + name,
-                        "--controller position implements generalized springs only (Buckley eq. 3.25); '" +
-                            name + "' is a damper");
+        throw InputError(task.task.source_file, "motions." + name,
+                         "--controller position implements generalized springs only (Buckley eq. 3.25); '" +
+                             name + "' is a damper");
     }
   return options;
 }

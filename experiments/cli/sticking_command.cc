@@ -8,7 +8,7 @@
 
 #include "experiments/cli/cli_output.h"
 #include "experiments/cli/command.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "verifier/atom_cone.h"
 #include "verifier/damper.h"
 #include "verifier/spring.h"
@@ -99,7 +99,7 @@ void add_sticking_command(CLI::App& app, CommandState& state) {
     const auto task = load_task(options->task);
     const Motion* motion = task->task.find_motion(options->motion);
     if (!motion)
-      throw TaskError(task->task.source_file, "motions", "no motion named '" + options->motion + "'");
+      throw InputError(task->task.source_file, "motions", "no motion named '" + options->motion + "'");
     const nlohmann::json j = sticking_json(*task, *motion);
     if (state.json) {
       print_json(j);

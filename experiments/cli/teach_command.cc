@@ -19,7 +19,7 @@
 #include "experiments/teach/session_file.h"
 #include "experiments/teach/teach_json.h"
 #include "experiments/validation/verifier_model.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 namespace {
@@ -106,7 +106,7 @@ const teaching::TeachStep& propose(teaching::Session& session, const SessionStep
   return step.inline_motion ? session.propose(*step.inline_motion) : session.propose(step.motion);
 }
 
-// One line of the interactive mode as a teaching step; throws TaskError on a bad line.
+// One line of the interactive mode as a teaching step; throws InputError on a bad line.
 SessionStep parse_line(const std::string& line, const Task& task) {
   std::istringstream in(line);
   std::string word;
@@ -158,7 +158,7 @@ void interactive(teaching::Session& session, std::vector<SessionStep>& transcrip
       const teaching::TeachStep& taught = propose(session, step);  // the step exists before it is numbered
       transcript.push_back(step);
       print_step(os, session, taught, session.steps().size() - 1);
-    } catch (const TaskError& e) {
+    } catch (const InputError& e) {
       os << e.reason() << " (" << e.key() << ")\n";
     }
   }

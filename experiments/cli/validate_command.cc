@@ -18,7 +18,7 @@
 #include "experiments/cli/verify_command.h"
 #include "experiments/common/json_text.h"
 #include "experiments/validation/validation.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 namespace {
@@ -79,7 +79,7 @@ ValidateOutput render(const LoadedTask& task, const ValidationResult& r, bool js
 }
 
 // The validation under the verifier's time limit (validate_with_verifier_budget), rendered where it ran. A
-// TaskError there comes back whole (file, key, reason, place), so bad input still names its key.
+// InputError there comes back whole (file, key, reason, place), so bad input still names its key.
 ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask>& task,
                                           const std::string& strategy, const ValidateOptions& options,
                                           double time_limit, bool json, bool with_ends) {
@@ -88,7 +88,7 @@ ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask
         try {
           const ValidateOutput v = render(*task, run_validation(task, strategy, o), json, with_ends);
           return json_text({{"out", v.out}, {"err", v.err}, {"exit_status", v.exit_status}});
-        } catch (const TaskError& e) {
+        } catch (const InputError& e) {
           return json_text({{"task_error",
                              {{"file", e.file()},
                               {"key", e.key()},
@@ -99,7 +99,7 @@ ValidateOutput validate_within_time_limit(const std::shared_ptr<const LoadedTask
       }));
   if (payload.contains("task_error")) {
     const nlohmann::json& e = payload["task_error"];
-    throw TaskError(e["file"], e["key"], e["reason"], TextLocation{e["line"], e["column"]});
+    throw InputError(e["file"], e["key"], e["reason"], TextLocation{e["line"], e["column"]});
   }
   return {payload["out"], payload["err"], payload["exit_status"]};
 }

@@ -20,7 +20,7 @@ struct ValidateEdrOptions {
 
 // Prints the result and returns the exit status: 1 when physics contradicts the verifier (a motion end
 // outside a world's predicted termination set, or a forbidden outcome of a strategy verified EDR-reliable),
-// else 0. Bad input throws TaskError.
+// else 0. Bad input throws InputError.
 int validate_edr(const ValidateEdrOptions& options);
 
 }  // namespace cmt

@@ -13,7 +13,7 @@
 #include "experiments/edr/edr_verdict.h"
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 // The verification in a forked child under the wall-clock limit (experiments/common/verifier_budget.h: the
@@ -56,7 +56,7 @@ nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strat
 namespace {
 
 // The EDR verdict's JSON (edr_verdict.h) computed in a forked child under the wall-clock limit, with
-// `reliable` and `timed_out`; bad input found there (a slice the loader rejects) comes back as TaskError.
+// `reliable` and `timed_out`; bad input found there (a slice the loader rejects) comes back as InputError.
 nlohmann::json edr_verdict_within_time_limit(const LoadedTask& task, const EdrVerdictRequest& request,
                                              double time_limit, std::chrono::steady_clock::time_point start) {
   const ForkedRun run = run_forked_with_budget(time_limit, [&](const std::function<void()>& phase_done) {
@@ -66,7 +66,7 @@ nlohmann::json edr_verdict_within_time_limit(const LoadedTask& task, const EdrVe
       out = edr_verdict_json(task.task, request, r);
       out["reliable"] = r.edr_reliable;
       out["timed_out"] = false;
-    } catch (const TaskError& e) {
+    } catch (const InputError& e) {
       out = {{"task_error", {{"file", e.file()}, {"key", e.key()}, {"reason", e.reason()}}}};
     }
     phase_done();
@@ -85,7 +85,7 @@ nlohmann::json edr_verdict_within_time_limit(const LoadedTask& task, const EdrVe
   }
   if (out.contains("task_error")) {
     const nlohmann::json& e = out["task_error"];
-    throw TaskError(e["file"], e["key"], e["reason"]);
+    throw InputError(e["file"], e["key"], e["reason"]);
   }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -187,7 +187,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
     if (!options->strategy.empty()) {
       strategy = task->task.strategy_named(options->strategy);
     } else if (!options->motion.empty()) {
-      strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: TaskError (verify.h)
+      strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: InputError (verify.h)
     } else {
       throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
     }

@@ -22,7 +22,7 @@
 #include "experiments/report/view_data.h"
 #include "experiments/report/view_page.h"
 #include "experiments/validation/verifier_model.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "sim/rollout.h"
 
 namespace cmt {
@@ -43,12 +43,12 @@ report::ConfigRow config_row(const ViewOptions& o, const Task& task) {
   for (report::ConfigRow& c : db.configs) {
     if (c.config_id != o.config) continue;
     if (c.task != task.name)
-      throw TaskError(o.results, "--config",
-                      "configuration " + std::to_string(o.config) + " is of task '" + c.task + "', not '" +
-                          task.name + "'");
+      throw InputError(o.results, "--config",
+                       "configuration " + std::to_string(o.config) + " is of task '" + c.task + "', not '" +
+                           task.name + "'");
     return std::move(c);
   }
-  throw TaskError(o.results, "--config", "no configuration " + std::to_string(o.config));
+  throw InputError(o.results, "--config", "no configuration " + std::to_string(o.config));
 }
 
 // A recorded rollout as the page draws it: its sampled path, then its end.
@@ -114,7 +114,7 @@ nlohmann::json run_view(const ViewOptions& o, bool* reliable) {
   if (strategy && verify.is_null()) {
     const VerifyOptions options = rollout_verify_options(*task);
     verify = verify_json_within_time_limit(*task, *strategy, options, o.time_limit, false, start);
-    if (verify.contains("error")) throw TaskError(o.task, "--strategy", verify["error"].get<std::string>());
+    if (verify.contains("error")) throw InputError(o.task, "--strategy", verify["error"].get<std::string>());
   }
   std::optional<report::PredictedSets> prediction;
   if (!verify.is_null()) prediction = report::parse_predicted_sets(verify, task->task.dimension);

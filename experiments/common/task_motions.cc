@@ -2,7 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 namespace {
@@ -39,7 +39,7 @@ std::string task_yaml_with_motions(const std::string& task_yaml, const Task& tas
   list.SetStyle(YAML::EmitterStyle::Flow);
   for (const AddedMotion& m : motions) {
     if (task.find_motion(m.name))
-      throw TaskError(task.source_file, "motions." + m.name, who + " motion name is taken");
+      throw InputError(task.source_file, "motions." + m.name, who + " motion name is taken");
     const YAML::Node v = point_yaml(m.target, task);
     YAML::Node motion;
     motion.SetStyle(YAML::EmitterStyle::Flow);
@@ -51,7 +51,7 @@ std::string task_yaml_with_motions(const std::string& task_yaml, const Task& tas
   }
   if (!strategy_name.empty()) {
     if (root["strategies"] && root["strategies"][strategy_name])
-      throw TaskError(task.source_file, "strategies." + strategy_name, who + " strategy name is taken");
+      throw InputError(task.source_file, "strategies." + strategy_name, who + " strategy name is taken");
     root["strategies"][strategy_name] = list;
   }
   YAML::Emitter out;

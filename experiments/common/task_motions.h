@@ -18,7 +18,7 @@ struct AddedMotion {
   std::vector<AxisBox> sensed_positions;  // `terminate: {position: ...}` when not empty (type 2)
 };
 
-// The text (comments dropped). Throws TaskError naming `motions.NAME` when a motion name is taken, or
+// The text (comments dropped). Throws InputError naming `motions.NAME` when a motion name is taken, or
 // `strategies.NAME` when the strategy name is; `who` names the program that chose the names.
 std::string task_yaml_with_motions(const std::string& task_yaml, const Task& task,
                                    const std::vector<AddedMotion>& motions, const std::string& strategy_name,

@@ -9,7 +9,7 @@
 
 namespace cmt {
 
-// The text (comments dropped). Throws TaskError naming `motions` when a planner motion name is taken.
+// The text (comments dropped). Throws InputError naming `motions` when a planner motion name is taken.
 std::string task_yaml_with_dampers(const std::string& task_yaml, const Task& task,
                                    const std::vector<Vec3>& directions,
                                    const std::string& strategy_name = "");

@@ -3,8 +3,8 @@
 
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
+#include "models/input_error.h"
 #include "models/model_error.h"
-#include "models/task_error.h"
 
 namespace cmt {
 namespace {
@@ -22,14 +22,14 @@ VerifyOptions slice_options(const LoadedTask& slice, const EdrVerdictRequest& r)
 const Strategy& checked_strategy(const Task& task, const EdrVerdictRequest& r) {
   const Strategy& strategy = task.strategy_named(r.strategy);
   if (strategy.conditional())
-    throw TaskError(r.file, "strategies." + r.strategy,
-                    "a conditional strategy: the EDR verdict is for decision-free sequences (the EDR test "
-                    "follows the last motion)");
+    throw InputError(r.file, "strategies." + r.strategy,
+                     "a conditional strategy: the EDR verdict is for decision-free sequences (the EDR test "
+                     "follows the last motion)");
   const Motion* last = task.find_motion(strategy.motions.back());
   if (r.require_signal && (last == nullptr || !last->edr_signal))
-    throw TaskError(r.file, "motions." + strategy.motions.back() + ".edr",
-                    "the last motion of strategy '" + r.strategy +
-                        "' carries no EDR termination predicate (add `edr: true`)");
+    throw InputError(r.file, "motions." + strategy.motions.back() + ".edr",
+                     "the last motion of strategy '" + r.strategy +
+                         "' carries no EDR termination predicate (add `edr: true`)");
   return strategy;
 }
 
@@ -97,7 +97,7 @@ EdrResult edr_verdict(const LoadedTask& task, const EdrVerdictRequest& request) 
   try {
     slices = model_slices(task.task, request.resolution);
   } catch (const std::invalid_argument& e) {
-    throw TaskError(request.file, "--resolution", e.what());
+    throw InputError(request.file, "--resolution", e.what());
   }
   EdrOptions options;
   options.verify = [request](const LoadedTask& slice) { return slice_options(slice, request); };

@@ -25,7 +25,7 @@ struct EdrVerdictRequest {
 };
 
 // The strategy's verdict over the task's slices. Bad input (a conditional strategy, too many slices, a last
-// motion without `edr: true` when required, a slice the loader rejects) throws TaskError naming the key.
+// motion without `edr: true` when required, a slice the loader rejects) throws InputError naming the key.
 EdrResult edr_verdict(const LoadedTask& task, const EdrVerdictRequest& request);
 
 // The verdict's JSON: task, strategy, motions, resolution, model, parameters (with critical and slice

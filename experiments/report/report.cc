@@ -21,8 +21,8 @@
 #include "experiments/report/sticking_figure.h"
 #include "experiments/report/view_data.h"
 #include "experiments/report/view_page.h"
+#include "models/input_error.h"
 #include "models/loaded_task.h"
-#include "models/task_error.h"
 
 namespace cmt::report {
 namespace {
@@ -42,7 +42,7 @@ std::string key(const ConfigRow& c, const std::string& column) {
 void prepare_output(const std::filesystem::path& out_dir) {
   std::error_code ec;
   if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
-    throw TaskError(out_dir.string(), "-o", "exists and is not a directory");
+    throw InputError(out_dir.string(), "-o", "exists and is not a directory");
   std::filesystem::create_directories(out_dir / kFigureDir, ec);
   if (!ec) std::filesystem::create_directories(out_dir / kViewDir, ec);
   if (ec)
@@ -80,7 +80,7 @@ class ReportBuilder {
       try {
         prediction = parse_predicted_sets(c.prediction->verify_json, task->task.dimension);
       } catch (const std::exception& e) {  // std::invalid_argument, nlohmann::json type errors
-        throw TaskError(db_.path.string(), key(c, "predictions.verify_json"), e.what());
+        throw InputError(db_.path.string(), key(c, "predictions.verify_json"), e.what());
       }
     }
     add_notes(c, prediction, s.notes);
@@ -97,7 +97,7 @@ class ReportBuilder {
       try {
         canvas = draw_sticking_figure(c.metrics->sticking, s.label);
       } catch (const std::exception& e) {
-        throw TaskError(db_.path.string(), key(c, "metrics.sticking"), e.what());
+        throw InputError(db_.path.string(), key(c, "metrics.sticking"), e.what());
       }
       if (canvas)
         save(*canvas, c, "sticking", "stick fraction", s);
@@ -147,7 +147,7 @@ class ReportBuilder {
     try {
       figures = falsify_motion_figures(c.metrics->falsify, prediction, c.rollouts, task.task);
     } catch (const std::exception& e) {  // std::invalid_argument, nlohmann::json type errors
-      throw TaskError(db_.path.string(), key(c, "metrics.falsify"), e.what());
+      throw InputError(db_.path.string(), key(c, "metrics.falsify"), e.what());
     }
     for (const FalsifyMotionFigure& f : figures) {
       const CSpaceFigureData data{
@@ -229,14 +229,15 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
   std::vector<TeachingRun> runs;
   for (const std::filesystem::path& f : files) {
     std::ifstream in(f);
-    if (!in) throw TaskError(f.string(), "", "cannot open the teaching result");
+    if (!in) throw InputError(f.string(), "", "cannot open the teaching result");
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     const bool teach = j.is_object() && j.contains("solved") && j.contains("steps");
     const bool backproject = j.is_object() && j.contains("start_inside") && j.contains("steps");
     if (j.is_discarded() || !(teach || backproject))
-      throw TaskError(f.string(), "",
-                      "not a `cmt teach --json` or `cmt backproject --json` result (an object with solved or "
-                      "start_inside, and steps)");
+      throw InputError(
+          f.string(), "",
+          "not a `cmt teach --json` or `cmt backproject --json` result (an object with solved or "
+          "start_inside, and steps)");
     std::string link;
     if (j.contains("view") && j["view"].is_string())
       link = std::filesystem::relative(std::filesystem::absolute(j["view"].get<std::string>()),
@@ -247,7 +248,7 @@ std::vector<TeachingRun> read_teaching_runs(const std::vector<std::filesystem::p
   return runs;
 }
 
-// Each file as one JSON object, after `adapt` (may be null), that holds `keys`; otherwise a TaskError naming
+// Each file as one JSON object, after `adapt` (may be null), that holds `keys`; otherwise a InputError naming
 // the file and the result: `noun` when it cannot be opened, `what` when it is not such a result.
 std::vector<nlohmann::json> read_json_results(const std::vector<std::filesystem::path>& files,
                                               const std::vector<const char*>& keys, const std::string& noun,
@@ -256,14 +257,14 @@ std::vector<nlohmann::json> read_json_results(const std::vector<std::filesystem:
   std::vector<nlohmann::json> runs;
   for (const std::filesystem::path& f : files) {
     std::ifstream in(f);
-    if (!in) throw TaskError(f.string(), "", "cannot open the " + noun);
+    if (!in) throw InputError(f.string(), "", "cannot open the " + noun);
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     if (adapt && j.is_object()) adapt(j);
     const bool has_keys = std::all_of(keys.begin(), keys.end(), [&](const char* k) { return j.contains(k); });
     if (j.is_discarded() || !j.is_object() || !has_keys) {
       std::string list;
       for (std::size_t i = 0; i < keys.size(); ++i) list += (i ? " and " : "") + std::string(keys[i]);
-      throw TaskError(f.string(), "", "not a " + what + " (an object with " + list + ")");
+      throw InputError(f.string(), "", "not a " + what + " (an object with " + list + ")");
     }
     runs.push_back(std::move(j));
   }
@@ -383,7 +384,7 @@ std::vector<FigureRef> write_plan_figures(const std::vector<nlohmann::json>& run
     try {
       task = load_task(run["task_file"].get<std::string>());
       layers = planned_layers(run, task->task.dimension);
-    } catch (const std::exception&) {  // TaskError, JSON errors: the table still shows the plan
+    } catch (const std::exception&) {  // InputError, JSON errors: the table still shows the plan
       continue;
     }
     std::vector<std::string> names;

@@ -17,12 +17,12 @@ struct ReportSummary {
   int configs = 0, done = 0, pending = 0, figures = 0;
 };
 
-// Throws TaskError (file, key, reason) for a bad database or bad content in it, std::runtime_error when the
+// Throws InputError (file, key, reason) for a bad database or bad content in it, std::runtime_error when the
 // output cannot be written.
 // `stick_class`: shades the 3-D pages' predicted pieces by their atom's stick class (empty: no shading).
 // `replay`: draws each configuration's counterexample trajectory on its 3-D page (empty: none drawn).
 // `teach_results`: `cmt teach --json` output files shown in a "Teaching sessions" section (a file that is not
-// such JSON is a TaskError naming it); `edr_results`: `cmt edr --json` files, an "Error detection and
+// such JSON is a InputError naming it); `edr_results`: `cmt edr --json` files, an "Error detection and
 // recovery" section; `plan_results`: `cmt plan --json` files, a "Planned strategies" section.
 ReportSummary write_report(const std::filesystem::path& database, const std::filesystem::path& out_dir,
                            const StickClassOf& stick_class = {}, const CounterexampleReplay& replay = {},

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "experiments/results/sqlite_db.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt::report {
 namespace {
@@ -33,9 +33,9 @@ const std::map<std::string, std::vector<std::string>>& required_schema() {
   return schema;
 }
 
-// Every SQLite error as TaskError(path, key, reason): the report names the table it was reading.
-TaskError query_error(const SqliteError& e, const std::string& key) {
-  return TaskError(e.path(), key, "query failed: " + e.detail());
+// Every SQLite error as InputError(path, key, reason): the report names the table it was reading.
+InputError query_error(const SqliteError& e, const std::string& key) {
+  return InputError(e.path(), key, "query failed: " + e.detail());
 }
 
 // A query of one table: SqliteStatement's errors keyed by the table, NULL columns as the report reads them.
@@ -75,7 +75,7 @@ SqliteDb open_read_only(const std::filesystem::path& path) {
   try {
     return SqliteDb(path, SqliteDb::Mode::kReadOnly);
   } catch (const SqliteError& e) {
-    throw TaskError(e.path(), "", "cannot open the results database: " + e.detail());
+    throw InputError(e.path(), "", "cannot open the results database: " + e.detail());
   }
 }
 
@@ -84,9 +84,9 @@ void check_is_sqlite(SqliteDb& db) {
   try {
     SqliteStatement probe = db.prepare("SELECT count(*) FROM sqlite_master");
     if (probe.step()) return;
-    throw TaskError(db.path(), "", "not an SQLite results database (no answer)");
+    throw InputError(db.path(), "", "not an SQLite results database (no answer)");
   } catch (const SqliteError& e) {
-    throw TaskError(db.path(), "", "not an SQLite results database (" + e.detail() + ")");
+    throw InputError(db.path(), "", "not an SQLite results database (" + e.detail() + ")");
   }
 }
 
@@ -96,11 +96,12 @@ void check_schema(SqliteDb& db) {
     Query info(db, "PRAGMA table_info(" + table + ")", table);
     while (info.step()) present.insert(info.text(1));
     if (present.empty())
-      throw TaskError(db.path(), table, "not a cmt results database: table '" + table + "' is missing");
+      throw InputError(db.path(), table, "not a cmt results database: table '" + table + "' is missing");
     for (const std::string& c : columns)
       if (!present.count(c))
-        throw TaskError(db.path(), table + "." + c,
-                        "not a cmt results database: column '" + c + "' of table '" + table + "' is missing");
+        throw InputError(
+            db.path(), table + "." + c,
+            "not a cmt results database: column '" + c + "' of table '" + table + "' is missing");
   }
 }
 
@@ -119,7 +120,7 @@ nlohmann::json json_column(const SqliteDb& db, const Query& s, int col, const st
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw TaskError(db.path(), key, std::string("invalid JSON: ") + e.what());
+    throw InputError(db.path(), key, std::string("invalid JSON: ") + e.what());
   }
 }
 
@@ -148,8 +149,8 @@ class ReadTransaction {
     try {
       db_.exec(sql);
     } catch (const SqliteError& e) {
-      throw TaskError(e.path(), "",
-                      std::string("cannot read the results database (") + sql + "): " + e.detail());
+      throw InputError(e.path(), "",
+                       std::string("cannot read the results database (") + sql + "): " + e.detail());
     }
   }
   SqliteDb& db_;
@@ -165,9 +166,9 @@ std::string config_key(std::int64_t id, const char* table, const char* column) {
 ResultsDb read_results_db(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
-    throw TaskError(path.string(), "", "no such results database (run `cmt sweep` first)");
+    throw InputError(path.string(), "", "no such results database (run `cmt sweep` first)");
   if (std::filesystem::is_directory(path, ec))
-    throw TaskError(path.string(), "", "is a directory, not a results database");
+    throw InputError(path.string(), "", "is a directory, not a results database");
   SqliteDb db = open_read_only(path);
   check_is_sqlite(db);
   ReadTransaction snapshot(db);
@@ -200,7 +201,7 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
       c.params = json_column(db, s, 7, config_key(c.config_id, "configs", "params"));
       if (c.params.is_null()) c.params = nlohmann::json::object();
       if (!c.params.is_object())
-        throw TaskError(db.path(), config_key(c.config_id, "configs", "params"), "not a JSON object");
+        throw InputError(db.path(), config_key(c.config_id, "configs", "params"), "not a JSON object");
       c.n = s.integer(8);
       c.seed = s.integer(9);
       c.mode = s.text(10);
@@ -278,7 +279,7 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
       m.verify_seconds = s.real(14);
       m.falsify = json_column(db, s, 15, config_key(it->first, "metrics", "falsify"));
       if (!m.falsify.is_null() && !m.falsify.is_object())
-        throw TaskError(db.path(), config_key(it->first, "metrics", "falsify"), "not a JSON object");
+        throw InputError(db.path(), config_key(it->first, "metrics", "falsify"), "not a JSON object");
       out.configs[it->second].metrics = std::move(m);
     }
   }

@@ -72,7 +72,7 @@ struct ResultsDb {
   std::vector<ConfigRow> configs;  // ordered by config_id
 };
 
-// Throws TaskError(path, table or column, reason) when the file is missing, is not an SQLite database, lacks
+// Throws InputError(path, table or column, reason) when the file is missing, is not an SQLite database, lacks
 // a table or column of the schema, or holds a JSON column that does not parse.
 ResultsDb read_results_db(const std::filesystem::path& path);
 

@@ -17,7 +17,7 @@ namespace cmt {
 class SqliteStatement;
 
 // what(): "<path>: <context>: <SQLite's message>" (no context: "<path>: <message>"); the parts apart for
-// callers that key their own errors (the report's TaskError by table).
+// callers that key their own errors (the report's InputError by table).
 class SqliteError : public std::runtime_error {
  public:
   SqliteError(std::string path, std::string context, std::string detail);

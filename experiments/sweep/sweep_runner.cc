@@ -5,7 +5,7 @@
 
 #include "experiments/common/json_text.h"
 #include "experiments/sweep/sweep_progress.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 
@@ -40,9 +40,9 @@ SweepRunCounts run_units(ResultsStore& store, const std::vector<SweepUnit>& unit
         ++counts.ran;
       else
         ++counts.taken;
-    } catch (const TaskError& e) {
+    } catch (const InputError& e) {
       progress.finish();
-      throw TaskError(e.file(), e.key(), e.reason() + " (in sweep unit " + describe_unit(*u) + ")");
+      throw InputError(e.file(), e.key(), e.reason() + " (in sweep unit " + describe_unit(*u) + ")");
     } catch (const std::exception& e) {
       progress.finish();
       throw std::runtime_error(std::string(e.what()) + " (in sweep unit " + describe_unit(*u) + ")");

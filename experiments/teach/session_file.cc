@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "models/task_ranges.h"
 #include "models/yaml_document.h"
 #include "models/yaml_node.h"
@@ -88,7 +88,7 @@ std::vector<SessionStep> parse_session(const std::string& yaml_text, const std::
 
 std::vector<SessionStep> load_session(const std::filesystem::path& path, const Task& task) {
   std::ifstream in(path);
-  if (!in) throw TaskError(path.string(), "", "cannot open the teaching session file");
+  if (!in) throw InputError(path.string(), "", "cannot open the teaching session file");
   std::stringstream text;
   text << in.rdbuf();
   return parse_session(text.str(), path.string(), task);

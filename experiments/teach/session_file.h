@@ -2,7 +2,7 @@
 // the order the teacher proposes motions (the strategy's last motion first); each item a motion name of the
 // task or an inline motion {spring: [x, y, z]} / {damper: [x, y, z]} with an optional `name`. Coordinates are
 // in the task's dimension ([x, z] for planar tasks), checked as the task loader checks motions; every error
-// is a TaskError naming the file, the key and the reason.
+// is a InputError naming the file, the key and the reason.
 #pragma once
 
 #include <filesystem>

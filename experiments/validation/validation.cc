@@ -10,7 +10,7 @@
 
 #include "experiments/common/verifier_budget.h"
 #include "experiments/validation/counterexample_search.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 namespace {
@@ -50,9 +50,9 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
     for (const std::string& name : strategy->motions) {
       const Motion* m = task->task.find_motion(name);
       if (m != nullptr && m->kind == Motion::Kind::kDamper)
-        throw TaskError(task->task.source_file, "motions." + name,
-                        "the position controller implements generalized springs only (Buckley eq. 3.25); '" +
-                            name + "' is a damper");
+        throw InputError(task->task.source_file, "motions." + name,
+                         "the position controller implements generalized springs only (Buckley eq. 3.25); '" +
+                             name + "' is a damper");
     }
   ValidationResult r;
   r.task = task->task.name;

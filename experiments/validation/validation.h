@@ -187,7 +187,7 @@ std::string replay_command(const LoadedTask& task, const std::string& strategy, 
 
 // Runs the verifier and the rollouts (and the search and the sticking table). The verifier runs on
 // make_verifier_model(task, options.form).task (theta_v widened for the admittance form), the rollouts on
-// `task`. Throws TaskError for an unknown strategy or a widened theta_v the task format refuses.
+// `task`. Throws InputError for an unknown strategy or a widened theta_v the task format refuses.
 ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const std::string& strategy,
                                 const ValidateOptions& options);
 

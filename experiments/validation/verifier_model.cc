@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "models/task_ranges.h"
 #include "sim/rollout.h"
 
@@ -70,7 +70,7 @@ VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, Contro
   m.reason = why.str();
 
   if (m.theta_v >= kMaxThetaV)
-    throw TaskError(
+    throw InputError(
         task->task.source_file, "uncertainty.theta_v",
         "the admittance form needs the verifier to use theta_v + " + std::to_string(m.extra_angle) +
             " (theta_f error fed back) = " + std::to_string(m.theta_v) + ", which the task format refuses: " +

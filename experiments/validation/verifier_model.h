@@ -98,7 +98,7 @@ struct VerifierModel {
 };
 
 // For the admittance form with theta_f > 0, `task` copied with uncertainty.theta_v = theta_v + beta; throws
-// TaskError(file, "uncertainty.theta_v", reason) when the widened angle leaves the task format's range
+// InputError(file, "uncertainty.theta_v", reason) when the widened angle leaves the task format's range
 // (< pi/2, kMaxThetaV in models/task_ranges.h).
 VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, ControllerForm form);
 

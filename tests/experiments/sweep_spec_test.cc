@@ -10,7 +10,7 @@
 #include "controllers/random.h"
 #include "experiments/sweep/spec/stable_hash.h"
 #include "experiments/sweep/spec/sweep_units.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "models/task_loader.h"
 #include "tests/experiments/sweep_test_util.h"
 
@@ -53,7 +53,7 @@ void expect_error(const std::string& text, const std::string& key, const std::st
     const SweepSpec spec = parse(text);
     expand_units(spec);
     ADD_FAILURE() << "no error for key " << key << " in:\n" << text;
-  } catch (const TaskError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "spec.yaml") << e.what();
     EXPECT_EQ(e.key(), key) << e.what();
     EXPECT_NE(e.reason().find(reason_part), std::string::npos) << e.what();
@@ -425,7 +425,7 @@ TEST(Shard, ParsesAndPartitions) {
     try {
       parse_shard(bad);
       ADD_FAILURE() << bad;
-    } catch (const TaskError& e) {
+    } catch (const InputError& e) {
       EXPECT_EQ(e.key(), "--shard") << bad;
     }
   }

@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "experiments/results/unit_record_json.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 
 namespace cmt {
 namespace {
@@ -50,7 +50,7 @@ TEST(VerifierBudget, ChildThatOverrunsIsKilledAtTheDeadline) {
 TEST(VerifierBudget, ChildExceptionsReachTheParentWithTheirMessage) {
   try {
     run_forked_with_budget(10, [](const std::function<void()>&) -> std::string {
-      throw TaskError("task.yaml", "strategies", "unknown strategy 'x'");
+      throw InputError("task.yaml", "strategies", "unknown strategy 'x'");
     });
     ADD_FAILURE() << "no exception";
   } catch (const std::runtime_error& e) {

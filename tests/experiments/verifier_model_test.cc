@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "tests/experiments/cmt_runner.h"
 
 namespace cmt {
@@ -103,7 +103,7 @@ TEST(VerifierModel, AWidenedAngleBeyondTheFormatIsBadInputNamingTheKey) {
   try {
     make_verifier_model(load_task_from_string(yaml, "room.yaml"), ControllerForm::kAdmittance);
     ADD_FAILURE() << "no error";
-  } catch (const TaskError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "room.yaml");
     EXPECT_EQ(e.key(), "uncertainty.theta_v");
     EXPECT_NE(e.reason().find("--controller impedance"), std::string::npos) << e.what();

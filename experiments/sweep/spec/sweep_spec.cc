@@ -10,7 +10,7 @@
 
 #include "controllers/random.h"
 #include "experiments/common/json_text.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "models/task_loader.h"
 #include "models/yaml_document.h"
 #include "models/yaml_node.h"
@@ -96,7 +96,7 @@ class SpecParser {
     entry.base_yaml = buffer.str();
     try {
       entry.base = parse_task_string(entry.base_yaml, entry.file.string());
-    } catch (const TaskError& e) {
+    } catch (const InputError& e) {
       file.fail("the task file is invalid: " + std::string(e.what()));
     }
     const SpecNode strategies = n.at("strategies").list();
@@ -256,8 +256,8 @@ class SpecParser {
   void check_value(const SweepTaskEntry& entry, const ParamValue& p, const std::string& spec_key) const {
     try {
       parse_task_string(apply_overrides(entry.base_yaml, entry.base, {p}), entry.file.string());
-    } catch (const TaskError& e) {
-      throw TaskError(
+    } catch (const InputError& e) {
+      throw InputError(
           file_, spec_key,
           "the value " + value_text(p) + " makes the task invalid: " + e.key() + ": " + e.reason());
     }
@@ -277,13 +277,13 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& label,
   try {
     return SpecParser(label, base_dir).parse(text);
   } catch (const YAML::Exception& e) {
-    throw TaskError(label, "", std::string("malformed YAML: ") + e.what());
+    throw InputError(label, "", std::string("malformed YAML: ") + e.what());
   }
 }
 
 SweepSpec load_sweep_spec(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in) throw TaskError(path.string(), "", "cannot open the file");
+  if (!in) throw InputError(path.string(), "", "cannot open the file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   return parse_sweep_spec(buffer.str(), path.string(), path.parent_path());

@@ -2,7 +2,7 @@
 // random draws from ranges, or both), rollout count, seeds and sampling mode to validate. Parsing checks the
 // spec as strictly as the task loader checks a task: unknown, missing and mistyped keys, out-of-range
 // values, unknown strategies and motions, and every override value against the task format; each failure
-// throws TaskError naming the spec file, the key path and the reason (cmt exits with status 2).
+// throws InputError naming the spec file, the key path and the reason (cmt exits with status 2).
 #pragma once
 
 #include <cstdint>

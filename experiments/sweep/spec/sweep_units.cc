@@ -5,7 +5,7 @@
 
 #include "experiments/common/json_text.h"
 #include "experiments/sweep/spec/stable_hash.h"
-#include "models/task_error.h"
+#include "models/input_error.h"
 #include "models/task_loader.h"
 
 namespace cmt {
@@ -18,7 +18,7 @@ constexpr const char* kUnitKeyVersion = "cmt-sweep-unit/2";
 
 // The spec key of the override that the task loader's complaint is about (its key path starts with the
 // override's task path), else the task entry.
-std::string culprit_key(const TaskError& e, const ParamSet& params, const std::string& entry_key) {
+std::string culprit_key(const InputError& e, const ParamSet& params, const std::string& entry_key) {
   for (const ParamValue& p : params) {
     const std::string path = p.target.task_path();
     if (e.key() == path || e.key().rfind(path + ".", 0) == 0) return p.spec_key;
@@ -63,10 +63,10 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
       std::string name;
       try {
         name = parse_task_string(yaml, entry.file.string()).name;
-      } catch (const TaskError& e) {
-        throw TaskError(spec.path, culprit_key(e, params, entry.spec_key),
-                        "these overrides " + json_text(params_json(params)) +
-                            " make the task invalid: " + e.key() + ": " + e.reason());
+      } catch (const InputError& e) {
+        throw InputError(spec.path, culprit_key(e, params, entry.spec_key),
+                         "these overrides " + json_text(params_json(params)) +
+                             " make the task invalid: " + e.key() + ": " + e.reason());
       }
       for (const std::string& strategy : entry.strategies)
         for (const std::uint64_t seed : spec.seeds) {
@@ -107,10 +107,10 @@ std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates) {
 Shard parse_shard(const std::string& text) {
   std::smatch m;
   if (!std::regex_match(text, m, std::regex("([0-9]{1,9})/([0-9]{1,9})")))
-    throw TaskError("(command line)", "--shard", "expected i/N with 0 <= i < N, got '" + text + "'");
+    throw InputError("(command line)", "--shard", "expected i/N with 0 <= i < N, got '" + text + "'");
   Shard s{std::stoi(m[1]), std::stoi(m[2])};
   if (s.count < 1 || s.index >= s.count)
-    throw TaskError("(command line)", "--shard", "expected i/N with 0 <= i < N, got '" + text + "'");
+    throw InputError("(command line)", "--shard", "expected i/N with 0 <= i < N, got '" + text + "'");
   return s;
 }
 

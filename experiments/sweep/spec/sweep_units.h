@@ -49,7 +49,7 @@ std::string make_unit_key(const std::string& task_yaml, const std::string& strat
 
 // Every unit of the spec: tasks in spec order, then parameter sets (grid, then random draws), strategies and
 // seeds (innermost). A unit whose key repeats an earlier one (the same values listed twice) is dropped and
-// counted in `duplicates`. Throws TaskError naming the spec key of an override that makes the task invalid.
+// counted in `duplicates`. Throws InputError naming the spec key of an override that makes the task invalid.
 std::vector<SweepUnit> expand_units(const SweepSpec& spec, int* duplicates = nullptr);
 
 // --shard i/N: unit k belongs to shard (k mod N).
@@ -59,7 +59,7 @@ struct Shard {
   bool contains(int unit_index) const { return unit_index % count == index; }
   std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
 };
-// Parses "i/N" with 0 <= i < N; throws TaskError(option, "--shard", reason) otherwise.
+// Parses "i/N" with 0 <= i < N; throws InputError(option, "--shard", reason) otherwise.
 Shard parse_shard(const std::string& text);
 
 }  // namespace cmt
