@@ -12,15 +12,15 @@
 namespace cmt {
 namespace {
 
-void check_on_surface(const LoadedTask& lt, const Region& region) {
-  const double tol = lt.surface_tolerance();
+void check_on_surface(const LoadedTask& task, const Region& region) {
+  const double tol = task.surface_tolerance();
   for (const Vec3& p : region_samples(region)) {
-    const double d = lt.cspace.distance_to_surface(p);
+    const double d = task.cspace.distance_to_surface(p);
     if (d > tol) {
       std::ostringstream msg;
       msg << "the region is not on the contact surface: point (" << p.x() << ", " << p.y() << ", " << p.z()
           << ") is " << d << " from the nearest face (tolerance " << tol << ")";
-      throw TaskError(lt.task.source_file, region.key, msg.str());
+      throw TaskError(task.task.source_file, region.key, msg.str());
     }
   }
 }
@@ -29,10 +29,10 @@ void check_on_surface(const LoadedTask& lt, const Region& region) {
 // in some, Donald l.867): at the nominal values some of it must be there. As the verifier locates a partial
 // goal (ReachedSet::from_region): a point on some atom; a segment or polygon on a face whose plane holds it
 // whole.
-bool partly_on_surface(const LoadedTask& lt, const Region& region) {
-  const double tol = lt.surface_tolerance();
-  if (region.kind == Region::Kind::kPoint) return lt.cspace.distance_to_surface(region.points[0]) <= tol;
-  for (const Face& f : lt.cspace.faces()) {
+bool partly_on_surface(const LoadedTask& task, const Region& region) {
+  const double tol = task.surface_tolerance();
+  if (region.kind == Region::Kind::kPoint) return task.cspace.distance_to_surface(region.points[0]) <= tol;
+  for (const Face& f : task.cspace.faces()) {
     bool in_plane = true;
     for (const Vec3& p : region.points) in_plane = in_plane && std::abs(f.normal.dot(p) - f.offset) <= tol;
     if (!in_plane) continue;
@@ -42,10 +42,10 @@ bool partly_on_surface(const LoadedTask& lt, const Region& region) {
   return false;
 }
 
-void check_partly_on_surface(const LoadedTask& lt, const std::vector<Region>& goal) {
+void check_partly_on_surface(const LoadedTask& task, const std::vector<Region>& goal) {
   for (const Region& g : goal)
-    if (partly_on_surface(lt, g)) return;
-  throw TaskError(lt.task.source_file, goal.front().key,
+    if (partly_on_surface(task, g)) return;
+  throw TaskError(task.task.source_file, goal.front().key,
                   "the goal is nowhere on the contact surface at the model parameters' nominal values");
 }
 

@@ -304,9 +304,9 @@ void RolloutRunner::drive(const Vec3& position, const Motion& motion, double dur
 
 RolloutOutcome RolloutRunner::run(const Strategy& strategy, std::uint64_t seed, int index) {
   const RolloutScene& scene = *impl_->scene;
-  const LoadedTask& lt = scene.task();
+  const LoadedTask& task = scene.task();
   Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(index));
-  const ErrorSampler sampler(lt.task.uncertainty, scene.options().mode, lt.task.dimension == 2);
+  const ErrorSampler sampler(task.task.uncertainty, scene.options().mode, task.task.dimension == 2);
   SampledErrors errors(sampler, rng, scene.options().switch_interval);
   return run(strategy, errors, index);
 }
@@ -393,11 +393,11 @@ int next_node(const StrategyNode& node, int node_id, const Vec3& position, const
 RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors, int index) {
   Impl& s = *impl_;
   const RolloutScene& scene = *s.scene;
-  const LoadedTask& lt = scene.task();
+  const LoadedTask& task = scene.task();
 
   RolloutOutcome out;
   out.index = index;
-  out.start = errors.start(lt.task.start);
+  out.start = errors.start(task.task.start);
   s.reset(out.start);
   double rollout_time = 0;
   bool all_terminated = true;
@@ -405,7 +405,7 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors,
   int motion_index = 0;
   for (int node_id = strategy.nodes.empty() ? -1 : 0; node_id >= 0; ++motion_index) {
     const StrategyNode& node = strategy.nodes[static_cast<std::size_t>(node_id)];
-    const Motion* motion = lt.task.find_motion(node.motion);
+    const Motion* motion = task.task.find_motion(node.motion);
     if (motion == nullptr)
       throw std::invalid_argument("strategy '" + strategy.name + "' names unknown motion '" + node.motion +
                                   "'");
@@ -425,8 +425,8 @@ RolloutOutcome RolloutRunner::run(const Strategy& strategy, ErrorSource& errors,
     out.motions.push_back(mo);
   }
   out.end = s.position();
-  out.atom =
-      out.motions.empty() ? lt.cspace.nearest_atom(out.end, scene.atom_tolerance()) : out.motions.back().atom;
+  out.atom = out.motions.empty() ? task.cspace.nearest_atom(out.end, scene.atom_tolerance())
+                                 : out.motions.back().atom;
   out.termination = out.motions.empty() ? Termination::kSticking : out.motions.back().termination;
   out.success = all_terminated && !out.unstable && !out.no_branch &&
                 scene.goal_distance(out.end) <= scene.atom_tolerance();

@@ -24,10 +24,10 @@ using namespace face_geometry;
 
 class BackProjector {
  public:
-  BackProjector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& from, const Vec3& v)
-      : cspace_(lt.cspace),
+  BackProjector(const LoadedTask& task, const AtomCones& cones, const ReachedSet& from, const Vec3& v)
+      : cspace_(task.cspace),
         v_(v.normalized()),
-        theta_v_(lt.task.uncertainty.theta_v),
+        theta_v_(task.task.uncertainty.theta_v),
         weak_(from),
         reached_impl_(weak_.impl()),
         work_(reached_impl_) {  // everything in `from` is pending

@@ -35,14 +35,14 @@ constexpr double kCoastRelativeSlack = 1e-9;
 
 class Projector {
  public:
-  Projector(const LoadedTask& lt, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
+  Projector(const LoadedTask& task, const AtomCones& cones, const ReachedSet& start, const Vec3& v,
             double stop_relative_speed, double contact_lift, double servo_coast)
-      : cspace_(lt.cspace),
+      : cspace_(task.cspace),
         v_(v.normalized()),
         lift_(std::max(0.0, contact_lift)),
         coast_(std::max(0.0, servo_coast) * (1 + kCoastRelativeSlack)),
         kappa_(std::max(0.0, stop_relative_speed)),
-        theta_v_(lt.task.uncertainty.theta_v),
+        theta_v_(task.task.uncertainty.theta_v),
         reached_(start),
         reached_impl_(reached_.impl()),
         work_(reached_impl_) {  // everything in the start is pending

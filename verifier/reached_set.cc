@@ -614,17 +614,18 @@ Region extruded_across_slab(const Region& r) {
 
 }  // namespace
 
-ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or_spatial, bool partial) {
-  const Region region = lt.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
-  const CSpace& c = lt.cspace;
-  const double tol = lt.surface_tolerance();
+ReachedSet ReachedSet::from_region(const LoadedTask& task, const Region& planar_or_spatial, bool partial) {
+  const Region region =
+      task.task.dimension == 2 ? extruded_across_slab(planar_or_spatial) : planar_or_spatial;
+  const CSpace& c = task.cspace;
+  const double tol = task.surface_tolerance();
   ReachedSet rs(c);
   const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
   if (region.kind == Region::Kind::kPoint) {
     const Vec3& p = region.points.at(0);
     const int id = c.nearest_atom(p, tol);
     if (id < 0 && partial) return rs;
-    if (id < 0) throw TaskError(lt.task.source_file, region.key, "the point is not on the contact surface");
+    if (id < 0) throw TaskError(task.task.source_file, region.key, "the point is not on the contact surface");
     switch (c.atom_kind(id)) {
       case AtomKind::kFace:
         rs.add_face_point(id, p);
@@ -681,14 +682,15 @@ ReachedSet ReachedSet::from_region(const LoadedTask& lt, const Region& planar_or
       for (const Face& f : c.faces())
         ok = ok || (rs.contains_atom(f.id) && c.distance_to_atom(s, f.id) <= tol);
     }
-    if (!ok) throw TaskError(lt.task.source_file, region.key, "part of the region is on no contact face");
+    if (!ok) throw TaskError(task.task.source_file, region.key, "part of the region is on no contact face");
   }
   return rs;
 }
 
-ReachedSet ReachedSet::from_regions(const LoadedTask& lt, const std::vector<Region>& regions, bool partial) {
-  ReachedSet rs(lt.cspace);
-  for (const Region& r : regions) rs.unite(from_region(lt, r, partial));
+ReachedSet ReachedSet::from_regions(const LoadedTask& task, const std::vector<Region>& regions,
+                                    bool partial) {
+  ReachedSet rs(task.cspace);
+  for (const Region& r : regions) rs.unite(from_region(task, r, partial));
   return rs;
 }
 

@@ -6,21 +6,21 @@
 
 namespace cmt {
 
-ReachedSet sensing_termination(const LoadedTask& lt, const AtomCones& cones, const Motion& m,
+ReachedSet sensing_termination(const LoadedTask& task, const AtomCones& cones, const Motion& m,
                                const ReachedSet& reached) {
-  return weakly_consistent(lt, cones, m.terminate, reached);
+  return weakly_consistent(task, cones, m.terminate, reached);
 }
 
-ReachedSet weakly_consistent(const LoadedTask& lt, const AtomCones& cones, const MotionTermination& t,
+ReachedSet weakly_consistent(const LoadedTask& task, const AtomCones& cones, const MotionTermination& t,
                              const ReachedSet& reached) {
-  const CSpace& c = lt.cspace;
+  const CSpace& c = task.cspace;
   if (!t.any()) return ReachedSet(c);
 
   // Def 4.1, position part: x within eps_s of P_s. The ball is over-approximated by the box grown by eps_s on
   // every axis (the ball lies in that cube), plus kSensingBoxRelativeSlack x scale.
   ReachedSet out = reached;
   if (!t.position.empty()) {
-    const double grow = lt.task.uncertainty.eps_s + kSensingBoxRelativeSlack * c.scale();
+    const double grow = task.task.uncertainty.eps_s + kSensingBoxRelativeSlack * c.scale();
     ReachedSet inside(c);
     for (const AxisBox& b : t.position) {
       AxisBox g = b;
@@ -38,7 +38,7 @@ ReachedSet weakly_consistent(const LoadedTask& lt, const AtomCones& cones, const
   if (!t.force.empty()) {
     std::vector<bool> keep(static_cast<std::size_t>(c.atom_count()), false);
     for (int id : out.atoms()) {
-      const FrictionCone sensed = cones[id].widened(lt.task.uncertainty.theta_f);
+      const FrictionCone sensed = cones[id].widened(task.task.uncertainty.theta_f);
       for (const ForceCone& f : t.force)
         if (sensed.may_intersect_cone(CircularCone{f.direction, f.angle})) keep[id] = true;
     }
@@ -47,9 +47,9 @@ ReachedSet weakly_consistent(const LoadedTask& lt, const AtomCones& cones, const
   return out;
 }
 
-ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& cones,
+ReachedSet without_strongly_consistent(const LoadedTask& task, const AtomCones& cones,
                                        const MotionTermination& t, const ReachedSet& set) {
-  const CSpace& c = lt.cspace;
+  const CSpace& c = task.cspace;
   if (!t.any()) return set;
   // Which atoms surely pass the force part (all of them when there is none).
   std::vector<bool> force_sure(static_cast<std::size_t>(c.atom_count()), t.force.empty());
@@ -59,7 +59,7 @@ ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& co
       const CircularCone& g = cones[id].generators()[0];
       for (const ForceCone& f : t.force) {
         const double between = std::acos(std::clamp(g.axis.normalized().dot(f.direction), -1.0, 1.0));
-        if (between + g.half_angle + lt.task.uncertainty.theta_f + kForceContainmentMargin <= f.angle)
+        if (between + g.half_angle + task.task.uncertainty.theta_f + kForceContainmentMargin <= f.angle)
           force_sure[static_cast<std::size_t>(id)] = true;
       }
     }
@@ -69,7 +69,7 @@ ReachedSet without_strongly_consistent(const LoadedTask& lt, const AtomCones& co
   ReachedSet kept = set.restricted(other);  // no point here surely passes
   ReachedSet sure = set.restricted(force_sure);
   if (t.position.empty()) return kept;  // the force part alone decides: every reading passes on those faces
-  const double shrink = lt.task.uncertainty.eps_s + kSensingBoxRelativeSlack * c.scale();
+  const double shrink = task.task.uncertainty.eps_s + kSensingBoxRelativeSlack * c.scale();
   for (const AxisBox& b : t.position) {
     AxisBox inner = b;
     inner.min.array() += shrink;

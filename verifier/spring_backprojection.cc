@@ -136,9 +136,9 @@ LineReach line_reach(const std::vector<Vec3>& part, const Vec3& focus, double r,
 
 class SpringBackProjector {
  public:
-  SpringBackProjector(const LoadedTask& lt, const ReachedSet& from, const Vec3& p)
-      : cspace_(lt.cspace),
-        u_(lt.task.uncertainty),
+  SpringBackProjector(const LoadedTask& task, const ReachedSet& from, const Vec3& p)
+      : cspace_(task.cspace),
+        u_(task.task.uncertainty),
         p_(p),
         base_(from.impl()),
         weak_(from),
@@ -179,7 +179,7 @@ class SpringBackProjector {
       no_leave_.push_back(std::move(stay));
     }
     // Faces in one plane (same unit normal and offset up to the surface tolerance), each with itself.
-    const double tol = lt.surface_tolerance();
+    const double tol = task.surface_tolerance();
     for (const Face& f : cspace_.faces()) {
       plane_faces_.emplace_back();
       for (const Face& g : cspace_.faces())

@@ -60,10 +60,10 @@ struct EdgeState {
 
 class SpringProjector {
  public:
-  SpringProjector(const LoadedTask& lt, const ReachedSet& start, const Vec3& p, SpringModel model,
+  SpringProjector(const LoadedTask& task, const ReachedSet& start, const Vec3& p, SpringModel model,
                   double stop_relative_speed, double contact_lift)
-      : cspace_(lt.cspace),
-        u_(lt.task.uncertainty),
+      : cspace_(task.cspace),
+        u_(task.task.uncertainty),
         p_(p),
         model_(model),
         eps_t_(eps_t(u_)),

@@ -14,11 +14,11 @@ namespace cmt {
 namespace {
 
 // One motion's termination set from `start` (damper Alg 4.1, spring Alg 4.4, plus §4.5 sensing).
-VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& motion,
+VerifyStep simulate(const LoadedTask& task, const AtomCones& cones, const Motion& motion,
                     const ReachedSet& start, const VerifyOptions& options) {
-  VerifyStep step{motion.name, ReachedSet(lt.cspace)};
+  VerifyStep step{motion.name, ReachedSet(task.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
-    SpringProjection p = forward_project_spring(lt, start, motion.target, options.spring_model,
+    SpringProjection p = forward_project_spring(task, start, motion.target, options.spring_model,
                                                 options.stop_relative_speed, options.contact_lift);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
@@ -32,8 +32,9 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
     step.free_radius = p.free_radius;
     step.reached = std::make_shared<const ReachedSet>(std::move(p.reached));
   } else {
-    DamperProjection p = forward_project_damper(lt, cones, start, motion.target, options.stop_relative_speed,
-                                                options.contact_lift, options.servo_coast);
+    DamperProjection p =
+        forward_project_damper(task, cones, start, motion.target, options.stop_relative_speed,
+                               options.contact_lift, options.servo_coast);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.slide_forever = std::move(p.slide_forever);
@@ -45,7 +46,7 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
   if (motion.terminate.any()) {
     // §4.5: the weakly consistent reached points join the weak sticking points (Alg 4.1 step 4). A motion
     // that can stop by sensing somewhere may terminate even where nothing sticks.
-    auto sensed = std::make_shared<const ReachedSet>(sensing_termination(lt, cones, motion, *step.reached));
+    auto sensed = std::make_shared<const ReachedSet>(sensing_termination(task, cones, motion, *step.reached));
     step.termination.unite(*sensed);
     step.may_not_terminate = step.may_not_terminate && sensed->empty();
     step.sensing = std::move(sensed);
@@ -55,8 +56,8 @@ VerifyStep simulate(const LoadedTask& lt, const AtomCones& cones, const Motion& 
 
 class StrategyVerifier {
  public:
-  StrategyVerifier(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options)
-      : lt_(lt), strategy_(strategy), options_(options), cones_(lt.cspace) {
+  StrategyVerifier(const LoadedTask& task, const Strategy& strategy, const VerifyOptions& options)
+      : lt_(task), strategy_(strategy), options_(options), cones_(task.cspace) {
     out_.node_step.assign(strategy.nodes.size(), -1);
     out_.spring_model = options.spring_model;
     out_.stop_relative_speed = options.stop_relative_speed;
@@ -171,22 +172,22 @@ class StrategyVerifier {
 
 }  // namespace
 
-std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& lt, const ReachedSet& final_set) {
-  return final_set.pieces_outside(ReachedSet::from_regions(lt, lt.task.goal, /*partial=*/true),
-                                  kGoalRelativeTolerance * lt.cspace.scale());
+std::vector<ReachedPiece> pieces_outside_goal(const LoadedTask& task, const ReachedSet& final_set) {
+  return final_set.pieces_outside(ReachedSet::from_regions(task, task.task.goal, /*partial=*/true),
+                                  kGoalRelativeTolerance * task.cspace.scale());
 }
 
-VerifyResult verify_motions(const LoadedTask& lt, const std::vector<std::string>& names,
+VerifyResult verify_motions(const LoadedTask& task, const std::vector<std::string>& names,
                             const VerifyOptions& options) {
   // unknown names: TaskError from simulate_node
-  return verify_strategy(lt, Strategy::sequence("", names), options);
+  return verify_strategy(task, Strategy::sequence("", names), options);
 }
 
-ReachedSet start_set(const LoadedTask& lt, const VerifyOptions& options) {
-  ReachedSet start = ReachedSet::from_region(lt, lt.task.start);
-  if (options.contact_lift <= 0 || lt.task.start.kind != Region::Kind::kPoint) return start;
-  const CSpace& c = lt.cspace;
-  const Vec3& p = lt.task.start.points.front();
+ReachedSet start_set(const LoadedTask& task, const VerifyOptions& options) {
+  ReachedSet start = ReachedSet::from_region(task, task.task.start);
+  if (options.contact_lift <= 0 || task.task.start.kind != Region::Kind::kPoint) return start;
+  const CSpace& c = task.cspace;
+  const Vec3& p = task.task.start.points.front();
   const int nf = static_cast<int>(c.faces().size()), ne = static_cast<int>(c.edges().size());
   for (int ei = 0; ei < ne; ++ei) {
     const Edge& e = c.edges()[ei];
@@ -201,13 +202,13 @@ ReachedSet start_set(const LoadedTask& lt, const VerifyOptions& options) {
   return start;
 }
 
-VerifyResult verify_strategy(const LoadedTask& lt, const Strategy& strategy, const VerifyOptions& options) {
-  return StrategyVerifier(lt, strategy, options).run(start_set(lt, options));
+VerifyResult verify_strategy(const LoadedTask& task, const Strategy& strategy, const VerifyOptions& options) {
+  return StrategyVerifier(task, strategy, options).run(start_set(task, options));
 }
 
-VerifyResult verify_strategy_from(const LoadedTask& lt, const Strategy& strategy, const ReachedSet& start,
+VerifyResult verify_strategy_from(const LoadedTask& task, const Strategy& strategy, const ReachedSet& start,
                                   const VerifyOptions& options) {
-  return StrategyVerifier(lt, strategy, options).run(start);
+  return StrategyVerifier(task, strategy, options).run(start);
 }
 
 }  // namespace cmt

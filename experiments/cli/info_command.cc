@@ -12,8 +12,8 @@ namespace cmt {
 namespace {
 
 // Planar tasks report atoms in the plane: a face is the segment [x, z] it extrudes, an edge the corner point.
-nlohmann::json atom_points(const LoadedTask& lt, const std::vector<Vec3>& pts) {
-  const int dim = lt.task.dimension;
+nlohmann::json atom_points(const LoadedTask& task, const std::vector<Vec3>& pts) {
+  const int dim = task.task.dimension;
   nlohmann::json out = nlohmann::json::array();
   std::vector<Vec3> seen;
   for (const Vec3& p : pts) {
@@ -28,9 +28,9 @@ nlohmann::json atom_points(const LoadedTask& lt, const std::vector<Vec3>& pts) {
 
 }  // namespace
 
-nlohmann::json info_json(const LoadedTask& lt, bool with_atoms, double build_seconds) {
-  const CSpace& c = lt.cspace;
-  const Task& t = lt.task;
+nlohmann::json info_json(const LoadedTask& task, bool with_atoms, double build_seconds) {
+  const CSpace& c = task.cspace;
+  const Task& t = task.task;
   int concave = 0, convex = 0, flat = 0, non_manifold = 0;
   for (const Edge& e : c.edges()) {
     concave += e.shape == EdgeShape::kConcave;
@@ -64,7 +64,7 @@ nlohmann::json info_json(const LoadedTask& lt, bool with_atoms, double build_sec
     list.push_back({{"id", f.id},
                     {"name", c.atom_name(f.id)},
                     {"kind", "face"},
-                    {"points", atom_points(lt, f.polygon)},
+                    {"points", atom_points(task, f.polygon)},
                     {"normal", point_json(n, t.dimension)},
                     {"friction", f.friction},
                     {"edges", f.edges},
@@ -74,7 +74,7 @@ nlohmann::json info_json(const LoadedTask& lt, bool with_atoms, double build_sec
     list.push_back({{"id", e.id},
                     {"name", c.atom_name(e.id)},
                     {"kind", "edge"},
-                    {"points", atom_points(lt, {e.a, e.b})},
+                    {"points", atom_points(task, {e.a, e.b})},
                     {"shape", edge_shape_name(e.shape)},
                     {"faces", e.faces}});
   }
@@ -82,7 +82,7 @@ nlohmann::json info_json(const LoadedTask& lt, bool with_atoms, double build_sec
     list.push_back({{"id", v.id},
                     {"name", c.atom_name(v.id)},
                     {"kind", "vertex"},
-                    {"points", atom_points(lt, {v.point})},
+                    {"points", atom_points(task, {v.point})},
                     {"faces", v.faces},
                     {"edges", v.edges}});
   }
@@ -90,10 +90,10 @@ nlohmann::json info_json(const LoadedTask& lt, bool with_atoms, double build_sec
   return j;
 }
 
-std::string info_text(const LoadedTask& lt) {
-  const CSpace& c = lt.cspace;
+std::string info_text(const LoadedTask& task) {
+  const CSpace& c = task.cspace;
   std::ostringstream s;
-  s << lt.task.name << " (" << lt.task.source_file << ", units " << unit_name(lt.task.units) << ")\n"
+  s << task.task.name << " (" << task.task.source_file << ", units " << unit_name(task.task.units) << ")\n"
     << "  C-obstacles: " << c.obstacles().size() << "\n"
     << "  atoms: " << c.atom_count() << " = " << c.faces().size() << " faces + " << c.edges().size()
     << " edges + " << c.vertices().size() << " vertices\n";

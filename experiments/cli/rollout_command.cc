@@ -25,13 +25,13 @@ std::string atom_kind_or_free(const CSpace& c, int atom) {
   return atom < 0 ? "free" : atom_kind_name(c.atom_kind(atom));
 }
 
-nlohmann::json motion_json(const LoadedTask& lt, const MotionOutcome& m) {
-  const int dim = lt.task.dimension;
+nlohmann::json motion_json(const LoadedTask& task, const MotionOutcome& m) {
+  const int dim = task.task.dimension;
   return {{"motion", m.motion},
           {"end", point_json(m.end, dim)},
           {"atom", m.atom},
-          {"atom_name", m.atom < 0 ? "free" : lt.cspace.atom_name(m.atom)},
-          {"kind", atom_kind_or_free(lt.cspace, m.atom)},
+          {"atom_name", m.atom < 0 ? "free" : task.cspace.atom_name(m.atom)},
+          {"kind", atom_kind_or_free(task.cspace, m.atom)},
           {"termination", termination_name(m.termination)},
           {"contact_force", {m.contact_force.x(), m.contact_force.y(), m.contact_force.z()}},
           {"sim_time", m.sim_time},
@@ -43,16 +43,16 @@ nlohmann::json motion_json(const LoadedTask& lt, const MotionOutcome& m) {
           {"branch", m.branch}};
 }
 
-nlohmann::json outcome_json(const LoadedTask& lt, const RolloutOutcome& r) {
-  const int dim = lt.task.dimension;
+nlohmann::json outcome_json(const LoadedTask& task, const RolloutOutcome& r) {
+  const int dim = task.task.dimension;
   nlohmann::json motions = nlohmann::json::array();
-  for (const MotionOutcome& m : r.motions) motions.push_back(motion_json(lt, m));
+  for (const MotionOutcome& m : r.motions) motions.push_back(motion_json(task, m));
   nlohmann::json j = {{"index", r.index},
                       {"start", point_json(r.start, dim)},
                       {"end", point_json(r.end, dim)},
                       {"atom", r.atom},
-                      {"atom_name", r.atom < 0 ? "free" : lt.cspace.atom_name(r.atom)},
-                      {"kind", atom_kind_or_free(lt.cspace, r.atom)},
+                      {"atom_name", r.atom < 0 ? "free" : task.cspace.atom_name(r.atom)},
+                      {"kind", atom_kind_or_free(task.cspace, r.atom)},
                       {"termination", termination_name(r.termination)},
                       {"success", r.success},
                       {"unstable", r.unstable},
@@ -62,7 +62,7 @@ nlohmann::json outcome_json(const LoadedTask& lt, const RolloutOutcome& r) {
   return j;
 }
 
-void write_csv(const std::filesystem::path& file, const LoadedTask& lt,
+void write_csv(const std::filesystem::path& file, const LoadedTask& task,
                const std::vector<RolloutOutcome>& rs) {
   std::ofstream out(file);
   if (!out) throw std::runtime_error("cannot write CSV file '" + file.string() + "'");
@@ -75,8 +75,8 @@ void write_csv(const std::filesystem::path& file, const LoadedTask& lt,
       const MotionOutcome& m = r.motions[i];
       out << r.index << ',' << r.success << ',' << r.unstable << ',' << r.start.x() << ',' << r.start.y()
           << ',' << r.start.z() << ',' << i << ',' << m.motion << ',' << m.end.x() << ',' << m.end.y() << ','
-          << m.end.z() << ',' << m.atom << ',' << (m.atom < 0 ? "free" : lt.cspace.atom_name(m.atom)) << ','
-          << atom_kind_or_free(lt.cspace, m.atom) << ',' << termination_name(m.termination) << ','
+          << m.end.z() << ',' << m.atom << ',' << (m.atom < 0 ? "free" : task.cspace.atom_name(m.atom)) << ','
+          << atom_kind_or_free(task.cspace, m.atom) << ',' << termination_name(m.termination) << ','
           << m.contact_force.x() << ',' << m.contact_force.y() << ',' << m.contact_force.z() << ','
           << m.sim_time << ',' << m.steps << ',' << m.max_penetration << '\n';
     }

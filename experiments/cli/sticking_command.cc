@@ -24,11 +24,11 @@ nlohmann::json polygon_json(const std::vector<Vec3>& pts, int dimension) {
 
 }  // namespace
 
-nlohmann::json sticking_json(const LoadedTask& lt, const Motion& motion) {
+nlohmann::json sticking_json(const LoadedTask& task, const Motion& motion) {
   const auto start = std::chrono::steady_clock::now();
-  const CSpace& c = lt.cspace;
-  const Uncertainty& u = lt.task.uncertainty;
-  const int dim = lt.task.dimension;
+  const CSpace& c = task.cspace;
+  const Uncertainty& u = task.task.uncertainty;
+  const int dim = task.task.dimension;
   const bool spring = motion.kind == Motion::Kind::kSpring;
   nlohmann::json atoms = nlohmann::json::array();
   nlohmann::json faces = nlohmann::json::array();
@@ -60,7 +60,7 @@ nlohmann::json sticking_json(const LoadedTask& lt, const Motion& motion) {
     faces.push_back(entry);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {{"task", lt.task.name},
+  return {{"task", task.task.name},
           {"motion", motion.name},
           {"model", spring ? "spring" : "damper"},
           {"eps_t", eps_t(u)},

@@ -51,7 +51,7 @@ nlohmann::json parameters_json(const Task& task, int resolution) {
 nlohmann::json slice_json(const Task& task, const EdrSlice& s) {
   nlohmann::json params = nlohmann::json::object();
   for (std::size_t p = 0; p < task.model_error.size(); ++p) params[task.model_error[p].name] = s.values[p];
-  const LoadedTask& lt = *s.task;
+  const LoadedTask& slice = *s.task;
   nlohmann::json out = {{"params", params},
                         {"goal_empty", s.goal_empty},
                         {"terminates", s.terminates},
@@ -65,12 +65,12 @@ nlohmann::json slice_json(const Task& task, const EdrSlice& s) {
     return out;
   }
   if (!s.linked) out["linking_problem"] = s.linking_problem;
-  out["forward"] = pieces_json(lt, s.reached->pieces());
+  out["forward"] = pieces_json(slice, s.reached->pieces());
   out["forward_area"] = s.reached->area();
   out["termination_area"] = s.termination->area();
-  out["success"] = pieces_json(lt, s.success->pieces());
+  out["success"] = pieces_json(slice, s.success->pieces());
   out["success_area"] = s.success->area();
-  out["failure"] = pieces_json(lt, s.failure_pieces);
+  out["failure"] = pieces_json(slice, s.failure_pieces);
   out["failure_area"] = s.failure_area;
   if (s.strong) {
     out["strong_preimage_area"] = s.strong->area();

@@ -252,9 +252,9 @@ nlohmann::json make_layer(const std::string& id, const std::string& name, const 
 }
 
 nlohmann::json view_data(const ViewInput& in) {
-  const LoadedTask& lt = *in.task;
-  json layers = cspace_layers(lt.cspace);
-  for (json& l : region_layers(lt.task)) layers.push_back(std::move(l));
+  const LoadedTask& task = *in.task;
+  json layers = cspace_layers(task.cspace);
+  for (json& l : region_layers(task.task)) layers.push_back(std::move(l));
   std::vector<std::string> motions = in.motions;
   if (in.prediction) {
     motions.clear();
@@ -271,8 +271,8 @@ nlohmann::json view_data(const ViewInput& in) {
         trajectory_layer(in.counterexample, "counterexample", "counterexample (replayed)", "#e00000"));
   return {{"format", "cmt-view-1"},
           {"title", in.title},
-          {"units", unit_name(lt.task.units)},
-          {"bounds", bounds_of(lt.cspace, lt.task)},
+          {"units", unit_name(task.task.units)},
+          {"bounds", bounds_of(task.cspace, task.task)},
           {"focus", focus_of(in)},
           {"layers", layers}};
 }

@@ -46,9 +46,9 @@ std::string point_text(const Vec3& p) {
 }
 
 // The start rollout 0 of `seed` will have: RolloutRunner::run draws it first from rollout_stream(seed, 0).
-Vec3 predicted_start(const LoadedTask& lt, const Candidate& c) {
+Vec3 predicted_start(const LoadedTask& task, const Candidate& c) {
   Rng rng = rollout_stream(c.seed, 0);
-  return sample_region(lt.task.start, c.mode, rng);
+  return sample_region(task.task.start, c.mode, rng);
 }
 
 class Search {

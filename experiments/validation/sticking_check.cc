@@ -42,10 +42,10 @@ Vec3 tilt(const Vec3& axis, double angle, double azimuth) {
 // Trial i: an atom uniformly, a point on it (a face's interior, an edge's middle half, the vertex), a command
 // near the atom's stick boundaries (tilted from the inward direction by up to 1.2 rad), and an actual
 // direction in the velocity cone (half of them on its rim, where classifications are decided).
-Trial make_trial(const LoadedTask& lt, const AtomCones& cones, const std::vector<int>& atoms,
+Trial make_trial(const LoadedTask& task, const AtomCones& cones, const std::vector<int>& atoms,
                  std::uint64_t seed, int i) {
   Rng rng = rollout_stream(seed, static_cast<std::uint64_t>(i));
-  const CSpace& c = lt.cspace;
+  const CSpace& c = task.cspace;
   Trial t;
   t.atom = atoms[uniform_index(rng, static_cast<int>(atoms.size()))];
   const std::vector<Vec3> pts = atom_points(c, t.atom);
@@ -70,7 +70,7 @@ Trial make_trial(const LoadedTask& lt, const AtomCones& cones, const std::vector
   }
   Vec3 inward = Vec3::Zero();
   for (int f : atom_faces(c, t.atom)) inward -= c.faces()[f].normal;
-  const double theta_v = lt.task.uncertainty.theta_v;
+  const double theta_v = task.task.uncertainty.theta_v;
   t.command = tilt(inward, uniform(rng, 0, 1.2), uniform(rng, 0, 2 * std::numbers::pi));
   t.cls = classify_damper(cones, t.atom, t.command, theta_v);
   const double a = uniform01(rng) < 0.5 ? theta_v : theta_v * std::sqrt(uniform01(rng));

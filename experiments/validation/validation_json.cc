@@ -8,11 +8,11 @@
 namespace cmt {
 namespace {
 
-std::string atom_label(const LoadedTask& lt, int atom) {
-  return atom < 0 ? "free" : lt.cspace.atom_name(atom);
+std::string atom_label(const LoadedTask& task, int atom) {
+  return atom < 0 ? "free" : task.cspace.atom_name(atom);
 }
 
-nlohmann::json end_json(const LoadedTask& lt, const ValidationResult& r, const ObservedEnd& e) {
+nlohmann::json end_json(const LoadedTask& task, const ValidationResult& r, const ObservedEnd& e) {
   const std::string motion = !e.motion_name.empty() ? e.motion_name
                              : e.motion >= 0 && e.motion < static_cast<int>(r.prediction.steps.size())
                                  ? r.prediction.steps[static_cast<std::size_t>(e.motion)].motion
@@ -22,23 +22,23 @@ nlohmann::json end_json(const LoadedTask& lt, const ValidationResult& r, const O
           {"mode", sample_mode_name(e.mode)},
           {"motion_index", e.motion},
           {"motion", motion},
-          {"end", point_json(e.end, lt.task.dimension)},
+          {"end", point_json(e.end, task.task.dimension)},
           {"atom", e.atom},
-          {"atom_name", atom_label(lt, e.atom)},
+          {"atom_name", atom_label(task, e.atom)},
           {"termination", termination_name(e.termination)},
           {"inside", e.inside},
           {"distance", e.distance}};  // +infinity (empty prediction) prints as null
 }
 
-nlohmann::json ends_json(const LoadedTask& lt, const ValidationResult& r,
+nlohmann::json ends_json(const LoadedTask& task, const ValidationResult& r,
                          const std::vector<ObservedEnd>& ends) {
   nlohmann::json out = nlohmann::json::array();
-  for (const ObservedEnd& e : ends) out.push_back(end_json(lt, r, e));
+  for (const ObservedEnd& e : ends) out.push_back(end_json(task, r, e));
   return out;
 }
 
 // Per atom: trials of each verifier class and how many stuck; must that slid and never that stuck disagree.
-nlohmann::json sticking_table(const LoadedTask& lt, const StickingCheckResult& s) {
+nlohmann::json sticking_table(const LoadedTask& task, const StickingCheckResult& s) {
   struct Row {
     AtomKind kind = AtomKind::kFace;
     int trials[3] = {0, 0, 0}, stuck[3] = {0, 0, 0};
@@ -54,7 +54,7 @@ nlohmann::json sticking_table(const LoadedTask& lt, const StickingCheckResult& s
   nlohmann::json out = nlohmann::json::array();
   for (const auto& [atom, row] : rows) {
     nlohmann::json entry = {
-        {"atom", atom}, {"name", lt.cspace.atom_name(atom)}, {"kind", atom_kind_name(row.kind)}};
+        {"atom", atom}, {"name", task.cspace.atom_name(atom)}, {"kind", atom_kind_name(row.kind)}};
     for (StickClass c : {StickClass::kMust, StickClass::kMay, StickClass::kNever}) {
       const int i = static_cast<int>(c);
       entry[stick_class_name(c)] = {{"trials", row.trials[i]}, {"stuck", row.stuck[i]}};
@@ -68,14 +68,14 @@ nlohmann::json sticking_table(const LoadedTask& lt, const StickingCheckResult& s
 
 }  // namespace
 
-nlohmann::json counterexample_json(const LoadedTask& lt, const Counterexample& cx) {
+nlohmann::json counterexample_json(const LoadedTask& task, const Counterexample& cx) {
   const RolloutOutcome& o = cx.outcome;
   nlohmann::json motions = nlohmann::json::array();
   for (const MotionOutcome& m : o.motions)
     motions.push_back({{"motion", m.motion},
-                       {"end", point_json(m.end, lt.task.dimension)},
+                       {"end", point_json(m.end, task.task.dimension)},
                        {"atom", m.atom},
-                       {"atom_name", atom_label(lt, m.atom)},
+                       {"atom_name", atom_label(task, m.atom)},
                        {"termination", termination_name(m.termination)},
                        {"node", m.node},
                        {"branch", m.branch}});
@@ -86,15 +86,15 @@ nlohmann::json counterexample_json(const LoadedTask& lt, const Counterexample& c
           {"replay", cx.replay},
           {"success", o.success},
           {"unstable", o.unstable},
-          {"start", point_json(o.start, lt.task.dimension)},
-          {"end", point_json(o.end, lt.task.dimension)},
+          {"start", point_json(o.start, task.task.dimension)},
+          {"end", point_json(o.end, task.task.dimension)},
           {"atom", o.atom},
-          {"atom_name", atom_label(lt, o.atom)},
+          {"atom_name", atom_label(task, o.atom)},
           {"termination", termination_name(o.termination)},
           {"motions", motions}};
 }
 
-nlohmann::json validation_json(const LoadedTask& lt, const ValidationResult& r, bool with_ends) {
+nlohmann::json validation_json(const LoadedTask& task, const ValidationResult& r, bool with_ends) {
   const int n = static_cast<int>(r.rollouts.size());
   nlohmann::json steps = nlohmann::json::array();
   for (std::size_t i = 0; i < r.steps.size(); ++i) {
@@ -133,15 +133,15 @@ nlohmann::json validation_json(const LoadedTask& lt, const ValidationResult& r, 
       {"coverage_constant", kCoverageConstant},
       {"contact_tolerance", r.contact_tolerance},
       {"timeouts", r.timeouts.size()},
-      {"unexpected_timeouts", ends_json(lt, r, r.unexpected_timeouts)},
+      {"unexpected_timeouts", ends_json(task, r, r.unexpected_timeouts)},
       {"unpredicted", r.unpredicted},
       {"steps", steps},
-      {"worst", ends_json(lt, r, r.worst)},
+      {"worst", ends_json(task, r, r.worst)},
       {"counterexample",
-       r.counterexample ? counterexample_json(lt, *r.counterexample) : nlohmann::json(nullptr)},
+       r.counterexample ? counterexample_json(task, *r.counterexample) : nlohmann::json(nullptr)},
       {"soundness_bug", r.soundness_bug},
       {"contradicts_verifier", contradicts_verifier(r)},
-      {"prediction", verify_json(lt, r.prediction, r.verify_seconds)},
+      {"prediction", verify_json(task, r.prediction, r.verify_seconds)},
       {"seconds",
        {{"verify", r.verify_seconds},
         {"rollouts", r.rollout_seconds},
@@ -151,15 +151,15 @@ nlohmann::json validation_json(const LoadedTask& lt, const ValidationResult& r, 
   if (r.search.ran)
     j["search"] = {{"rollouts", r.search.rollouts},
                    {"outside", r.search.outside},
-                   {"worst", ends_json(lt, r, r.search.worst)},
+                   {"worst", ends_json(task, r, r.search.worst)},
                    {"note", r.search.note}};
   if (r.sticking) {
-    nlohmann::json s = sticking_check_json(lt, *r.sticking);
+    nlohmann::json s = sticking_check_json(task, *r.sticking);
     s.erase("records");  // summarized per atom below; every trial is `cmt check-sticking`'s business
-    s["per_atom"] = sticking_table(lt, *r.sticking);
+    s["per_atom"] = sticking_table(task, *r.sticking);
     j["sticking"] = s;
   }
-  if (with_ends) j["ends"] = ends_json(lt, r, r.ends);
+  if (with_ends) j["ends"] = ends_json(task, r, r.ends);
   return j;
 }
 

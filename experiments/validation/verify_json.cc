@@ -4,14 +4,14 @@
 
 namespace cmt {
 
-nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>& pieces) {
-  const int dim = lt.task.dimension;
+nlohmann::json pieces_json(const LoadedTask& task, const std::vector<ReachedPiece>& pieces) {
+  const int dim = task.task.dimension;
   nlohmann::json out = nlohmann::json::array();
   for (const ReachedPiece& p : pieces) {
     nlohmann::json poly = nlohmann::json::array();
     for (const Vec3& q : p.polygon) poly.push_back(point_json(q, dim));
     nlohmann::json entry = {{"atom", p.atom},
-                            {"name", lt.cspace.atom_name(p.atom)},
+                            {"name", task.cspace.atom_name(p.atom)},
                             {"kind", atom_kind_name(p.kind)},
                             {"polygon", poly}};
     if (!p.holes.empty()) {
@@ -32,21 +32,21 @@ nlohmann::json pieces_json(const LoadedTask& lt, const std::vector<ReachedPiece>
 namespace {
 
 // A spring motion's free-space rest ball (not an atom).
-nlohmann::json free_piece_json(const LoadedTask& lt, const VerifyStep& s) {
+nlohmann::json free_piece_json(const LoadedTask& task, const VerifyStep& s) {
   return {{"atom", -1},
           {"name", "free"},
           {"kind", "free"},
-          {"center", point_json(s.free_center, lt.task.dimension)},
+          {"center", point_json(s.free_center, task.task.dimension)},
           {"radius", s.free_radius}};
 }
 
 }  // namespace
 
-nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double seconds, bool with_reached) {
+nlohmann::json verify_json(const LoadedTask& task, const VerifyResult& r, double seconds, bool with_reached) {
   nlohmann::json steps = nlohmann::json::array();
   for (const VerifyStep& s : r.steps) {
-    nlohmann::json termination = pieces_json(lt, s.termination.pieces());
-    if (s.free_termination) termination.push_back(free_piece_json(lt, s));
+    nlohmann::json termination = pieces_json(task, s.termination.pieces());
+    if (s.free_termination) termination.push_back(free_piece_json(task, s));
     steps.push_back({{"motion", s.motion},
                      {"termination", termination},
                      {"may_not_terminate", s.may_not_terminate},
@@ -54,9 +54,9 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
                      {"fixpoint_steps", s.fixpoint_steps},
                      {"widened_atoms", s.widened_atoms},
                      {"reached_area", s.reached_area}});
-    if (with_reached && s.reached) steps.back()["reached"] = pieces_json(lt, s.reached->pieces());
+    if (with_reached && s.reached) steps.back()["reached"] = pieces_json(task, s.reached->pieces());
     // The part of `termination` due to the motion's termination sets (Buckley §4.5), when it has any.
-    if (s.sensing) steps.back()["sensing_termination"] = pieces_json(lt, s.sensing->pieces());
+    if (s.sensing) steps.back()["sensing_termination"] = pieces_json(task, s.sensing->pieces());
     // Conditional strategies (Buckley §4.2): where the step sits in the strategy tree and the test after it.
     nlohmann::json& j = steps.back();
     j["node"] = s.node;
@@ -68,12 +68,12 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
         branches.push_back({{"branch", i},
                             {"reachable", !s.branches[i].start->empty()},
                             {"step", s.branches[i].step},
-                            {"start", pieces_json(lt, s.branches[i].start->pieces())}});
+                            {"start", pieces_json(task, s.branches[i].start->pieces())}});
       j["branches"] = branches;
     }
-    if (s.unmatched) j["unmatched"] = pieces_json(lt, s.unmatched->pieces());
+    if (s.unmatched) j["unmatched"] = pieces_json(task, s.unmatched->pieces());
   }
-  nlohmann::json out = {{"task", lt.task.name},
+  nlohmann::json out = {{"task", task.task.name},
                         {"reliable", r.reliable},
                         {"steps", steps},
                         {"seconds", seconds},
@@ -84,9 +84,9 @@ nlohmann::json verify_json(const LoadedTask& lt, const VerifyResult& r, double s
   if (!r.reliable) {
     out["failed_step"] = r.failed_step;
     out["failure"] = r.failure;
-    out["outside_goal"] = pieces_json(lt, r.outside_goal);
+    out["outside_goal"] = pieces_json(task, r.outside_goal);
     if (r.failed_step >= 0 && r.steps[r.failed_step].free_termination)
-      out["outside_goal"].push_back(free_piece_json(lt, r.steps[r.failed_step]));
+      out["outside_goal"].push_back(free_piece_json(task, r.steps[r.failed_step]));
   }
   return out;
 }

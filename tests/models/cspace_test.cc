@@ -134,8 +134,8 @@ TEST(CSpace, RepeatedBoxesAreOneBox) {
 }
 
 TEST(CSpace, CubeInteriorHasBuckleyCounts) {
-  auto lt = load_task_from_string(test::kCubeYaml, "cube.yaml");
-  const CSpace& c = lt->cspace;
+  auto task = load_task_from_string(test::kCubeYaml, "cube.yaml");
+  const CSpace& c = task->cspace;
   EXPECT_EQ(c.faces().size(), 6u);
   EXPECT_EQ(c.edges().size(), 12u);
   EXPECT_EQ(c.vertices().size(), 8u);
@@ -156,8 +156,8 @@ TEST(CSpace, CubeInteriorHasBuckleyCounts) {
 }
 
 TEST(CSpace, HoleHasBuckleyTable63Counts) {
-  auto lt = load_task_from_string(test::kHoleYaml, "hole.yaml");
-  const CSpace& c = lt->cspace;
+  auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const CSpace& c = task->cspace;
   EXPECT_EQ(c.faces().size(), 14u);
   EXPECT_EQ(c.edges().size(), 32u);
   EXPECT_EQ(c.vertices().size(), 20u);
@@ -199,8 +199,8 @@ TEST(CSpace, AtomIdsAreStable) {
 }
 
 TEST(CSpace, ClassifiesPoints) {
-  auto lt = load_task_from_string(test::kHoleYaml, "hole.yaml");
-  const CSpace& c = lt->cspace;
+  auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const CSpace& c = task->cspace;
   EXPECT_EQ(c.classify(Vec3(0, 0, 1), 1e-9), PointClass::kFree);
   EXPECT_EQ(c.classify(Vec3(0, 0, -1), 1e-9), PointClass::kFree);  // in the hole
   EXPECT_EQ(c.classify(Vec3(3, 3, -1), 1e-9), PointClass::kInsideObstacle);

@@ -28,8 +28,8 @@ void expect_error(const std::string& strategies, const std::string& key, const s
 }
 
 TEST(StrategyTree, ASequenceIsAChainOfNodes) {
-  auto lt = load_task_from_string(test::kHoleYaml, "hole.yaml");
-  const Strategy& s = *lt->task.find_strategy("teach");
+  auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const Strategy& s = *task->task.find_strategy("teach");
   EXPECT_FALSE(s.conditional());
   ASSERT_EQ(s.nodes.size(), 2u);
   EXPECT_EQ(s.nodes[0].motion, "p2");
@@ -43,7 +43,7 @@ TEST(StrategyTree, ASequenceIsAChainOfNodes) {
 }
 
 TEST(StrategyTree, BranchesBecomeATreeInFileOrder) {
-  auto lt = load_task_from_string(with_strategies(R"(
+  auto task = load_task_from_string(with_strategies(R"(
   probe:
     - p2
     - branch:
@@ -60,8 +60,8 @@ TEST(StrategyTree, BranchesBecomeATreeInFileOrder) {
                 - else: []
         - else: [p1]
 )"),
-                                  "tree.yaml");
-  const Strategy& s = *lt->task.find_strategy("probe");
+                                    "tree.yaml");
+  const Strategy& s = *task->task.find_strategy("probe");
   EXPECT_TRUE(s.conditional());
   // Pre-order: 0 p2, 1 p1 (branch 1), 2 p2 (inner branch 0), 3 p1 (its next), 4 p1 (else).
   ASSERT_EQ(s.nodes.size(), 5u);

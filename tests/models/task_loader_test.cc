@@ -29,8 +29,8 @@ void expect_error(const std::string& yaml, const std::string& key, const std::st
 }
 
 TEST(TaskLoader, LoadsTheHole) {
-  auto lt = load_task_from_string(test::kHoleYaml, "hole.yaml");
-  const Task& t = lt->task;
+  auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const Task& t = task->task;
   EXPECT_EQ(t.name, "hole");
   EXPECT_EQ(t.units, LengthUnit::kInch);
   EXPECT_DOUBLE_EQ(t.uncertainty.step, 0.2);  // defaults to eps_p (models/task_ranges.h)
@@ -44,18 +44,18 @@ TEST(TaskLoader, LoadsTheHole) {
 TEST(TaskLoader, NormalizesDamperAndReadsPartFriction) {
   std::string y = replace(test::kHoleYaml, "p1: {spring: [0, 0, -2.4]}", "p1: {damper: [0, 0, -2]}");
   y = replace(y, "max: [-1, 6, 0]}", "max: [-1, 6, 0], friction: 0.3}");
-  auto lt = load_task_from_string(y, "x.yaml");
-  EXPECT_EQ(lt->task.find_motion("p1")->target, Vec3(0, 0, -1));
-  EXPECT_DOUBLE_EQ(lt->task.cspace[0].friction, 0.3);
-  EXPECT_DOUBLE_EQ(lt->task.cspace[1].friction, 0.48);
+  auto task = load_task_from_string(y, "x.yaml");
+  EXPECT_EQ(task->task.find_motion("p1")->target, Vec3(0, 0, -1));
+  EXPECT_DOUBLE_EQ(task->task.cspace[0].friction, 0.3);
+  EXPECT_DOUBLE_EQ(task->task.cspace[1].friction, 0.48);
 }
 
 TEST(TaskLoader, GoalMayBeAList) {
   const std::string y = replace(
       test::kHoleYaml, "goal: {polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]}",
       "goal:\n  - point: [0, 0, -2]\n  - polygon: [[-1, -1, -2], [1, -1, -2], [1, 1, -2], [-1, 1, -2]]");
-  auto lt = load_task_from_string(y, "x.yaml");
-  EXPECT_EQ(lt->task.goal.size(), 2u);
+  auto task = load_task_from_string(y, "x.yaml");
+  EXPECT_EQ(task->task.goal.size(), 2u);
 }
 
 TEST(TaskLoader, MalformedYaml) { expect_error("name: [unclosed", "name", "malformed YAML"); }
@@ -140,8 +140,8 @@ TEST(TaskLoader, ReadsTerminationSets) {
                                 "p1:\n    spring: [0, 0, -2.4]\n    terminate:\n"
                                 "      position: {box: {min: [-1, -1, -2.1], max: [1, 1, -1.9]}}\n"
                                 "      force: {direction: [0, 0, 2], angle: 0.3}");
-  auto lt = load_task_from_string(y, "t.yaml");
-  const MotionTermination& t = lt->task.find_motion("p1")->terminate;
+  auto task = load_task_from_string(y, "t.yaml");
+  const MotionTermination& t = task->task.find_motion("p1")->terminate;
   ASSERT_EQ(t.position.size(), 1u);
   EXPECT_EQ(t.position[0].min, Vec3(-1, -1, -2.1));
   EXPECT_EQ(t.position[0].max, Vec3(1, 1, -1.9));
@@ -149,7 +149,7 @@ TEST(TaskLoader, ReadsTerminationSets) {
   EXPECT_EQ(t.force[0].direction, Vec3(0, 0, 1));  // normalized
   EXPECT_DOUBLE_EQ(t.force[0].angle, 0.3);
   EXPECT_TRUE(t.any());
-  EXPECT_FALSE(lt->task.find_motion("p2")->terminate.any());  // not given: sticking only
+  EXPECT_FALSE(task->task.find_motion("p2")->terminate.any());  // not given: sticking only
 }
 
 TEST(TaskLoader, TerminationSetsMayBeLists) {
@@ -159,8 +159,8 @@ TEST(TaskLoader, TerminationSetsMayBeLists) {
                                 "        - box: {min: [2, -1, -0.1], max: [3, 1, 0.1]}\n      force:\n"
                                 "        - {direction: [0, 0, 1], angle: 0.3}\n"
                                 "        - {direction: [1, 0, 0], angle: 1.5707963267948966}");
-  auto lt = load_task_from_string(y, "t.yaml");
-  const MotionTermination& t = lt->task.find_motion("p1")->terminate;
+  auto task = load_task_from_string(y, "t.yaml");
+  const MotionTermination& t = task->task.find_motion("p1")->terminate;
   EXPECT_EQ(t.position.size(), 2u);
   EXPECT_EQ(t.force.size(), 2u);
 }
@@ -179,8 +179,8 @@ goal: {point: [2, 0]}
 motions:
   v1: {damper: [1, -0.2], terminate: {position: {box: {min: [1, -1], max: [3, 1]}}, force: {direction: [0, 1], angle: 0.5}}}
 )";
-  auto lt = load_task_from_string(planar, "planar.yaml");
-  const MotionTermination& t = lt->task.find_motion("v1")->terminate;
+  auto task = load_task_from_string(planar, "planar.yaml");
+  const MotionTermination& t = task->task.find_motion("v1")->terminate;
   ASSERT_EQ(t.position.size(), 1u);
   EXPECT_EQ(t.position[0].min, Vec3(1, -kPlanarClipHalfDepth, -1));
   EXPECT_EQ(t.position[0].max, Vec3(3, kPlanarClipHalfDepth, 1));
@@ -237,8 +237,8 @@ motions:
 strategies:
   s: [v1]
 )";
-  auto lt = load_task_from_string(planar, "planar.yaml");
-  const CSpace& c = lt->cspace;
+  auto task = load_task_from_string(planar, "planar.yaml");
+  const CSpace& c = task->cspace;
   // Polygonal free space: top wall, left wall, right wall, step top (z=0), step riser (x=0), floor (z=-1).
   EXPECT_EQ(c.faces().size(), 6u);
   EXPECT_EQ(c.edges().size(), 6u);  // the polygon's corners, extruded along y

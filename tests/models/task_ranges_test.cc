@@ -86,9 +86,9 @@ TEST(TaskRanges, ErrorBoundsBeyondTheSceneAreRejected) {
 
 TEST(TaskRanges, PerfectPositioningGetsAStepFromTheScene) {
   // Bounds (-6..6, -6..6, -2..4): diagonal 18; the default step is 1 % of it.
-  const auto lt = load_task_from_string(
+  const auto task = load_task_from_string(
       replace(replace(test::kHoleYaml, "eps_s: 0.2", "eps_s: 0"), "eps_p: 0.2", "eps_p: 0"), "t.yaml");
-  EXPECT_DOUBLE_EQ(lt->task.uncertainty.step, 0.18);
+  EXPECT_DOUBLE_EQ(task->task.uncertainty.step, 0.18);
   EXPECT_DOUBLE_EQ(load_task_from_string(test::kHoleYaml, "t.yaml")->task.uncertainty.step, 0.2);
 }
 

@@ -299,13 +299,13 @@ TEST(ConditionalVerify, TwoBlocksProbeIsReliableWhereTiltAloneIsNot) {
   // test (the box shrunk by eps_s = .2 is x in [-1.8, 1.8], |y| <= 4.8, z in [-.8, .3]), and so is absent
   // from the else branch, which starts on B's top (z = 3: more than eps_s above the box, so branch 0 holds
   // none of it).
-  const auto lt = load_task(std::filesystem::path(CMT_SOURCE_DIR) / "models/tasks/two_blocks.yaml");
-  const CSpace& c = lt->cspace;
+  const auto task = load_task(std::filesystem::path(CMT_SOURCE_DIR) / "models/tasks/two_blocks.yaml");
+  const CSpace& c = task->cspace;
   const int gap = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0)), top = face_at(c, Vec3::UnitZ(), Vec3(3, 0, 3));
   ASSERT_GE(gap, 0);
   ASSERT_GE(top, 0);
-  EXPECT_FALSE(verify_strategy(*lt, *lt->task.find_strategy("tilt")).reliable);
-  const VerifyResult v = verify_strategy(*lt, *lt->task.find_strategy("probe"));
+  EXPECT_FALSE(verify_strategy(*task, *task->task.find_strategy("tilt")).reliable);
+  const VerifyResult v = verify_strategy(*task, *task->task.find_strategy("probe"));
   EXPECT_TRUE(v.reliable) << v.failure;
   ASSERT_EQ(v.steps.size(), 2u);
   const VerifyStep& s = v.steps[0];

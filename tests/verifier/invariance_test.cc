@@ -35,9 +35,9 @@ std::vector<Vec3> vertices(const ReachedSet& set) {
   return out;
 }
 
-VerifyResult verify(const LoadedTask& lt, const std::string& strategy) {
+VerifyResult verify(const LoadedTask& task, const std::string& strategy) {
   const VerifyOptions options{SpringModel::kVelocity, 0.01};  // the main job's model (verifier_model.h)
-  return verify_strategy(lt, *lt.task.find_strategy(strategy), options);
+  return verify_strategy(task, *task.task.find_strategy(strategy), options);
 }
 
 // Every vertex of `from`'s step sets, mapped by `map`, lies within tol of `to`'s corresponding set. A planar

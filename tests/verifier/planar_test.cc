@@ -28,19 +28,19 @@ int edge_over(const CSpace& c, double x, double z) {
 }
 
 TEST(Planar, RegionsAreExtrudedAcrossTheSlab) {
-  const auto lt = planar_blocks();
-  const CSpace& c = lt->cspace;
+  const auto task = planar_blocks();
+  const CSpace& c = task->cspace;
   EXPECT_TRUE(c.planar());
   EXPECT_EQ(c.faces().size(), 12u);
   EXPECT_EQ(c.edges().size(), 12u);
   EXPECT_TRUE(c.vertices().empty());
   // The start point (3, 3) stands for the segment over it on B's top: every y in the slab, nothing beyond.
-  const ReachedSet start = ReachedSet::from_region(*lt, lt->task.start);
+  const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
   for (double y : {-kPlanarClipHalfDepth, -0.2, 0.0, 0.3, kPlanarClipHalfDepth})
     EXPECT_NEAR(start.distance(Vec3(3, y, 3)), 0, 1e-12) << y;
   EXPECT_NEAR(start.distance(Vec3(3.5, 0, 3)), 0.5, 1e-12);
   // The goal segment is the band over the gap floor (area = length 3 x slab width 1), with the corner lines.
-  const ReachedSet goal = ReachedSet::from_regions(*lt, lt->task.goal);
+  const ReachedSet goal = ReachedSet::from_regions(*task, task->task.goal);
   const int gap = test::face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
   ASSERT_GE(gap, 0);
   EXPECT_NEAR(goal.face_area(gap), 3.0, 1e-12);
@@ -53,18 +53,18 @@ TEST(Planar, RegionsAreExtrudedAcrossTheSlab) {
 }
 
 TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
-  const auto lt = planar_blocks();
-  const CSpace& c = lt->cspace;
-  const VerifyResult slide = verify_strategy(*lt, *lt->task.find_strategy("slide"));
+  const auto task = planar_blocks();
+  const CSpace& c = task->cspace;
+  const VerifyResult slide = verify_strategy(*task, *task->task.find_strategy("slide"));
   EXPECT_TRUE(slide.reliable) << slide.failure;
   ASSERT_EQ(slide.steps.size(), 1u);
   // v2 never sticks on a face; the only place it sticks is the concave corner (-1.5, 0), the whole line.
   EXPECT_EQ(slide.steps[0].termination.atoms(), std::vector<int>{edge_over(c, -1.5, 0)});
   EXPECT_EQ(slide.steps[0].termination.area(), 0.0);
 
-  const Strategy& down_strategy = *lt->task.find_strategy("down");
+  const Strategy& down_strategy = *task->task.find_strategy("down");
   const VerifyResult down =
-      verify_strategy(*lt, down_strategy, {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
+      verify_strategy(*task, down_strategy, {SpringModel::kViaPoint, test::kRolloutStopRelativeSpeed});
   EXPECT_FALSE(down.reliable);
   // theta_v > phi: v1 may stick on B's top (the start is there) and, sliding off either side, on the floor
   // of the gap and right of B, never on A's top (z = 2 is out of reach from x >= 1.5 - 3 tan(.25) > -1.5).
@@ -81,7 +81,7 @@ TEST(Planar, SlideIsReliableAndEndsInTheCornerDownIsNot) {
   // With Coulomb sticking only, v1 (theta_v .25 > phi .245 about B's top normal) may slide forever at up to
   // .005 V on B's top; slide's v2 holds in the corner (A's right wall +x, floor +z: every N_i > 0 and
   // friction wins), so slide stays reliable.
-  const VerifyResult coulomb = verify_strategy(*lt, down_strategy);
+  const VerifyResult coulomb = verify_strategy(*task, down_strategy);
   EXPECT_FALSE(coulomb.reliable);
   EXPECT_NE(coulomb.failure.find("may slide forever on"), std::string::npos) << coulomb.failure;
   ASSERT_FALSE(coulomb.steps.empty());

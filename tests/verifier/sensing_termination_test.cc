@@ -23,8 +23,8 @@ using test::face_at;
 constexpr double kAreaTolerance = 1e-6;
 
 TEST(WithinBox, ClipsFacesEdgesAndVerticesExactly) {
-  const auto lt = load_task_from_string(test::sensing_room(""), "room");
-  const CSpace& c = lt->cspace;
+  const auto task = load_task_from_string(test::sensing_room(""), "room");
+  const CSpace& c = task->cspace;
   const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
   const int edge = edge_between(c, Vec3(5, -5, 0), Vec3(5, 5, 0));  // floor meets the wall x = 5
   ASSERT_GE(floor, 0);
@@ -57,8 +57,8 @@ TEST(WithinBox, ClipsFacesEdgesAndVerticesExactly) {
 }
 
 TEST(WithinBox, KeepsSegmentsAndPointsInside) {
-  const auto lt = load_task_from_string(test::sensing_room(""), "room");
-  const CSpace& c = lt->cspace;
+  const auto task = load_task_from_string(test::sensing_room(""), "room");
+  const CSpace& c = task->cspace;
   const int floor = face_at(c, Vec3::UnitZ(), Vec3(0, 0, 0));
   ReachedSet s(c);
   s.add_face_segment(floor, Vec3(-4, 0, 0), Vec3(4, 0, 0));
@@ -143,8 +143,8 @@ TEST(SensingTermination, ForceConeKeepsOnlyAtomsWhoseSensedForcesMayMatch) {
   // reached floor point may terminate (type 3 needs no position set); the edge's cone (the sum of the floor's
   // and the wall's) holds the floor's, so it is kept too.
   const int edge = [] {
-    const auto lt = load_task_from_string(test::sensing_room(""), "room");
-    return edge_between(lt->cspace, Vec3(5, -5, 0), Vec3(5, 5, 0));
+    const auto task = load_task_from_string(test::sensing_room(""), "room");
+    return edge_between(task->cspace, Vec3(5, -5, 0), Vec3(5, 5, 0));
   }();
   const Verified up = verify_room("{force: {direction: [0, 0, 1], angle: 0.2}}");
   const VerifyStep& s = up.result.steps.at(0);

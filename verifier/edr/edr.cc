@@ -27,30 +27,30 @@ std::string termination_failure(const VerifyResult& result, std::size_t motions)
   return "";
 }
 
-void add_preimages(const LoadedTask& lt, const ReachedSet& goal, const Motion& motion,
+void add_preimages(const LoadedTask& task, const ReachedSet& goal, const Motion& motion,
                    const EdrOptions& options, EdrSlice* s) {
   if (motion.kind != Motion::Kind::kDamper) return;
-  const AtomCones cones(lt.cspace);
+  const AtomCones cones(task.cspace);
   const DamperBackprojection strong = backproject_damper(
-      lt, cones, goal, motion.target, s->options.stop_relative_speed, options.backprojection_margin(lt));
-  const WeakBackprojection weak = weak_backproject_damper(lt, cones, goal, motion.target);
+      task, cones, goal, motion.target, s->options.stop_relative_speed, options.backprojection_margin(task));
+  const WeakBackprojection weak = weak_backproject_damper(task, cones, goal, motion.target);
   s->strong = strong.strong.intersected(*s->reached);
   s->weak = weak.weak.intersected(*s->reached);
   s->failure_sticking_area =
-      ReachedSet::from_pieces(lt.cspace, s->failure_pieces).intersected(*s->weak).area();
+      ReachedSet::from_pieces(task.cspace, s->failure_pieces).intersected(*s->weak).area();
 }
 
 // (d), Donald's linking condition (L0) at every link k of the sequence: the terminations of the first k
 // motions that lie in G, G ∩ push_k, must lie in the strong preimage of G under the remaining motions, i.e.
 // the rest run from there ends in G only (verify_strategy_from's goal containment).
-void check_linking(const LoadedTask& lt, const std::vector<std::string>& motions, const VerifyResult& result,
-                   const ReachedSet& goal, EdrSlice* s) {
+void check_linking(const LoadedTask& task, const std::vector<std::string>& motions,
+                   const VerifyResult& result, const ReachedSet& goal, EdrSlice* s) {
   for (std::size_t k = 1; k < motions.size() && k < result.steps.size(); ++k) {
     const ReachedSet attained = result.steps[k - 1].termination.intersected(goal);
     if (attained.empty()) continue;
     const std::vector<std::string> rest(motions.begin() + static_cast<std::ptrdiff_t>(k), motions.end());
     const VerifyResult from_goal =
-        verify_strategy_from(lt, Strategy::sequence("rest", rest), attained, s->options);
+        verify_strategy_from(task, Strategy::sequence("rest", rest), attained, s->options);
     if (from_goal.reliable) continue;
     s->linked = false;
     s->linking_problem = "motion '" + motions[k - 1] + "' may stop in the goal, and from there '" +
@@ -72,11 +72,11 @@ EdrSlice simulate_slice(const Task& task, const std::vector<std::string>& motion
   EdrSlice s;
   s.values = values;
   s.task = load_task_slice(task, values);
-  const LoadedTask& lt = *s.task;
-  const ReachedSet goal = ReachedSet::from_regions(lt, lt.task.goal, /*partial=*/true);
+  const LoadedTask& slice = *s.task;
+  const ReachedSet goal = ReachedSet::from_regions(slice, slice.task.goal, /*partial=*/true);
   s.goal_empty = goal.empty();
-  s.options = options.verify(lt);
-  const VerifyResult result = verify_motions(lt, motions, s.options);
+  s.options = options.verify(slice);
+  const VerifyResult result = verify_motions(slice, motions, s.options);
   s.termination_problem = termination_failure(result, motions.size());
   s.terminates = s.termination_problem.empty();
   if (!s.terminates) return s;
@@ -85,10 +85,10 @@ EdrSlice simulate_slice(const Task& task, const std::vector<std::string>& motion
   s.reached = last.reached;
   s.termination = std::make_shared<const ReachedSet>(last.termination);
   s.success = std::make_shared<const ReachedSet>(last.termination.intersected(goal));
-  s.failure_pieces = pieces_outside_goal(lt, last.termination);
+  s.failure_pieces = pieces_outside_goal(slice, last.termination);
   for (const ReachedPiece& p : s.failure_pieces) s.failure_area += p.area;
-  if (options.preimages) add_preimages(lt, goal, *lt.task.find_motion(motions.back()), options, &s);
-  check_linking(lt, motions, result, goal, &s);
+  if (options.preimages) add_preimages(slice, goal, *slice.task.find_motion(motions.back()), options, &s);
+  check_linking(slice, motions, result, goal, &s);
   return s;
 }
 
