@@ -1,5 +1,9 @@
 #include "experiments/fuzz/fuzz_run.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,7 +15,6 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "experiments/fuzz/child_process.h"
 #include "experiments/fuzz/minimizer.h"
@@ -110,16 +113,19 @@ std::string failure_report(const Execution& e, const Failure& f) {
   return out.str();
 }
 
-// Calls work(i) for i in [0, count) on `jobs` threads.
+// Calls work(i) for i in [0, count) on `jobs` TBB threads, one item per task (each runs child processes for
+// seconds, so no batching).
 void parallel_for(size_t count, int jobs, const std::function<void(size_t)>& work) {
-  std::atomic<size_t> next{0};
-  std::vector<std::thread> threads;
-  for (int t = 0; t < std::max(1, jobs); ++t) {
-    threads.emplace_back([&] {
-      for (size_t i = next++; i < count; i = next++) work(i);
-    });
-  }
-  for (auto& thread : threads) thread.join();
+  if (count == 0) return;
+  tbb::task_arena arena(std::max(1, jobs));
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, count, 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t i = range.begin(); i != range.end(); ++i) work(i);
+        },
+        tbb::simple_partitioner());
+  });
 }
 
 struct Record {
