@@ -138,6 +138,31 @@ Cell gaps(const json& f) {
   return text_cell(text);
 }
 
+bool flag(const json& j, const char* key) {
+  const json& v = member(j, key);
+  return v.is_boolean() && v.get<bool>();
+}
+
+// The failure search under an unreliable verdict (docs/falsify.md "Failure search"): "-" without a budget,
+// "not run (reliable)" under a reliable verdict, else "400 rollouts, closest 0.3 to a predicted failure; 2
+// failed (first by failure, 0.12 from the goal)" or "...; none failed: a false alarm". `failures` counts the
+// failed rollouts of every phase, the random ones included.
+std::string failure_search(const json& f) {
+  if (!flag(f, "failure_searched"))
+    return integer(f, "failure_budget") > 0 && flag(f, "reliable") ? "not run (reliable)" : "-";
+  std::string out = std::to_string(integer(f, "failure_rollouts")) + " rollouts";
+  if (const double closest = number(f, "failure_closest"); std::isfinite(closest))
+    out += ", closest " + significant(closest) + " to a predicted failure";
+  const int failures = integer(f, "failures");
+  if (failures == 0) return out + "; none failed: a false alarm";
+  out += "; " + std::to_string(failures) + " failed";
+  const json& first = member(f, "first_failure");
+  if (first.is_object())
+    out += " (first by " + string(first, "how") + ", " + significant(number(first, "goal_distance")) +
+           " from the goal)";
+  return out;
+}
+
 std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
   const ConfigRow& c = *s.row;
   std::vector<Cell> row;
@@ -155,6 +180,7 @@ std::vector<Cell> falsify_row(const ConfigSection& s, const json& f) {
   row.push_back(text_cell(pieces_reached(f)));
   row.push_back(unreached(f));
   row.push_back(gaps(f));
+  row.push_back(text_cell(failure_search(f)));
   return row;
 }
 
@@ -177,7 +203,8 @@ Table falsify_table(const std::vector<ConfigSection>& sections) {
                "coverage before → after",
                "pieces reached/total",
                "unreached pieces",
-               "gaps reached/targeted"};
+               "gaps reached/targeted",
+               "failure search (unreliable verdicts)"};
   for (const ConfigSection& s : sections)
     if (const json* f = falsify_data(*s.row)) t.rows.push_back(falsify_row(s, *f));
   return t;
@@ -188,7 +215,14 @@ std::string falsify_note(const ConfigRow& row) {
   if (f == nullptr) return "";
   std::string note = "adversarial search: " + std::to_string(integer(*f, "rollouts")) + " search rollouts, ";
   const int outside = integer(*f, "outside");
-  if (outside == 0) return note + "no motion end outside the prediction; coverage " + coverage_change(*f);
+  std::string failure;
+  if (flag(*f, "failure_searched"))
+    failure = integer(*f, "failures") == 0
+                  ? "; failure search: none of " + std::to_string(integer(*f, "failure_rollouts")) +
+                        " rollouts failed (a false alarm)"
+                  : "; failure search: " + failure_search(*f);
+  if (outside == 0)
+    return note + "no motion end outside the prediction; coverage " + coverage_change(*f) + failure;
   note += std::to_string(outside) + " motion end" + (outside == 1 ? "" : "s") + " outside the prediction";
   const json& bugs = array(*f, "soundness_bugs");
   if (!bugs.empty()) {
@@ -197,7 +231,7 @@ std::string falsify_note(const ConfigRow& row) {
     if (const std::string replay = string(worst, "replay"); !replay.empty())
       note += ", replay with: " + replay;
   }
-  return note;
+  return note + failure;
 }
 
 void count_falsify(const ConfigRow& row, SummaryStats& s, double* sum_before, double* sum_after,
@@ -207,6 +241,10 @@ void count_falsify(const ConfigRow& row, SummaryStats& s, double* sum_before, do
   ++s.falsified;
   s.falsify_rollouts += integer(*f, "rollouts");
   s.falsify_outside += integer(*f, "outside");
+  if (flag(*f, "failure_searched")) {
+    ++s.failure_searched;
+    if (integer(*f, "failures") == 0) ++s.failure_false_alarms;
+  }
   const double before = number(*f, "coverage_before"), after = number(*f, "coverage_after");
   if (std::isfinite(before) && std::isfinite(after)) {
     *sum_before += before;

@@ -327,7 +327,11 @@ std::vector<SummaryLine> summary_lines(const SummaryStats& s) {
          count_of(s.falsified, "configuration") + " searched: " + std::to_string(s.falsify_rollouts) +
              " search rollouts, " + std::to_string(s.falsify_outside) +
              " motion ends outside the prediction found by the search; mean coverage " +
-             fraction(s.mean_coverage_before) + " before, " + fraction(s.mean_coverage_after) + " after"});
+             fraction(s.mean_coverage_before) + " before, " + fraction(s.mean_coverage_after) + " after" +
+             (s.failure_searched > 0
+                  ? "; failure search under " + count_of(s.failure_searched, "unreliable verdict") + ": " +
+                        std::to_string(s.failure_false_alarms) + " with no failing rollout (false alarms)"
+                  : std::string())});
   return lines;
 }
 

@@ -61,6 +61,9 @@ struct SummaryStats {
   double rollout_seconds = 0;  // sum over the done configurations
   // The adversarial search (falsify_table.cc), over the done configurations that have one.
   int falsified = 0, falsify_rollouts = 0, falsify_outside = 0;
+  // Of those, the configurations whose failure search ran (verified unreliable), and those where no rollout
+  // of any phase failed: false alarms that survived the search.
+  int failure_searched = 0, failure_false_alarms = 0;
   double mean_coverage_before = kNoValue, mean_coverage_after = kNoValue;
 };
 

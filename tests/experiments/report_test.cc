@@ -866,16 +866,17 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
                       "<td>48 (2 unstable)</td><td>5</td><td>1</td><td>p1 0.0125 (outside)</td>"
                       "<td>0.4000 → 0.5500</td><td>1/2 (random 1)</td>"
                       "<td>step 0 p1: e3 (edge, measure 0.5, closest end 0.02, searched)</td>"
-                      "<td>1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8</td></tr>"),
+                      "<td>1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8</td><td>-</td></tr>"),
             std::string::npos)
       << html;
   // Markdown: the same table under its own heading.
   const std::string md = between(r.markdown, "## Adversarial rollouts", "## Config 1:");
   ASSERT_FALSE(md.empty()) << r.markdown;
-  EXPECT_NE(md.find("| [1](#config-1) | cube / stick | reliable | 48 (2 unstable) | 5 | 1 | p1 0.0125 "
-                    "(outside) | 0.4000 → 0.5500 | 1/2 (random 1) | step 0 p1: e3 (edge, measure 0.5, "
-                    "closest end 0.02, searched) | 1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8 |"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| [1](#config-1) | cube / stick | reliable | 48 (2 unstable) | 5 | 1 | p1 0.0125 "
+              "(outside) | 0.4000 → 0.5500 | 1/2 (random 1) | step 0 p1: e3 (edge, measure 0.5, "
+              "closest end 0.02, searched) | 1/2; unreached: p1 at (-0.9, 0.9, -1), closest end 0.8 | - |"),
+      std::string::npos)
       << md;
   // The note with the farthest end's replay command, in both documents; the summary line.
   const std::string note = std::string(
@@ -910,7 +911,9 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
     row.metrics->falsify = falsify;
     const cmt::report::ReportContent c = cmt::report::build_report_content(db, {section_of(row)});
     EXPECT_EQ(c.falsify.rows.size(), 1u);
-    return c.falsify.rows.empty() ? std::string() : c.falsify.rows[0].back().at(0).text;
+    constexpr std::size_t kGapsColumn = 10;  // "gaps reached/targeted"
+    EXPECT_EQ(c.falsify.headers.at(kGapsColumn), "gaps reached/targeted");
+    return c.falsify.rows.empty() ? std::string() : c.falsify.rows[0].at(kGapsColumn).at(0).text;
   };
   json f = falsify_json_of_config1();
   f.erase("gaps");
@@ -931,6 +934,68 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
 // The per-motion figure of the search (experiments/report/falsify_figure.h): config 1's square lies on the
 // cube's bottom, so the top view shows it widest. The search's ends are drawn by phase, an end outside as a
 // red cross, the unreached piece's outline and the unreached gap in ink; the random ends keep their dots.
+// The failure search under an unreliable verdict: its column, the note and the summary count, for a search
+// that found a failing rollout and for one that did not (a false alarm).
+TEST(Report, AdversarialRolloutsShowTheFailureSearch) {
+  json failed = falsify_json_of_config1();
+  failed["reliable"] = false;
+  failed["outside"] = 0;
+  failed["soundness_bugs"] = json::array();
+  failed["failure_budget"] = 400;
+  failed["failure_searched"] = true;
+  failed["failure_rollouts"] = 400;
+  failed["failure_closest"] = 0.25;
+  failed["failures"] = 3;
+  failed["first_failure"] = {{"how", "failure"}, {"goal_distance", 0.125}, {"replay", kFalsifyReplay}};
+  const Report r = make_report("failure_search", [&](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {failed.dump()});
+  });
+  ASSERT_EQ(r.status, 0);
+  const std::string cell =
+      "400 rollouts, closest 0.25 to a predicted failure; 3 failed (first by failure, "
+      "0.125 from the goal)";
+  const std::string html = between(r.html, "<h2 id=\"falsify\">Adversarial rollouts</h2>", "</table>");
+  EXPECT_NE(html.find("<th>failure search (unreliable verdicts)</th>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<td>" + cell + "</td></tr>"), std::string::npos) << html;
+  EXPECT_NE(r.markdown.find("coverage 0.4000 → 0.5500; failure search: " + cell), std::string::npos)
+      << r.markdown;
+  EXPECT_NE(r.markdown.find("failure search under 1 unreliable verdict: 0 with no failing rollout (false "
+                            "alarms)"),
+            std::string::npos)
+      << r.markdown;
+
+  json none = failed;
+  none["failures"] = 0;
+  none["first_failure"] = nullptr;
+  none["failure_closest"] = nullptr;
+  const Report q = make_report("false_alarm", [&](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {none.dump()});
+  });
+  ASSERT_EQ(q.status, 0);
+  EXPECT_NE(q.html.find("<td>400 rollouts; none failed: a false alarm</td></tr>"), std::string::npos);
+  EXPECT_NE(q.markdown.find("failure search: none of 400 rollouts failed (a false alarm)"),
+            std::string::npos);
+  EXPECT_NE(q.markdown.find("failure search under 1 unreliable verdict: 1 with no failing rollout"),
+            std::string::npos);
+
+  // A reliable verdict with a failure budget: the search did not run.
+  json reliable = falsify_json_of_config1();
+  reliable["failure_budget"] = 400;
+  reliable["failure_searched"] = false;
+  const Report t = make_report("reliable_budget", [&](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {reliable.dump()});
+  });
+  ASSERT_EQ(t.status, 0);
+  EXPECT_NE(t.html.find("<td>not run (reliable)</td></tr>"), std::string::npos);
+  EXPECT_EQ(t.markdown.find("failure search under"), std::string::npos);
+}
+
 TEST(Report, AdversarialSearchFigureShowsEachPhaseAndWhatStayedUnreached) {
   const std::vector<double> falsify_end = {0.1, 0.1, -1}, gap_end = {-0.3, 0.05, -1},
                             outside = {0.1, 0.8, -1}, coverage_end = {0.3, -0.35, -1},
