@@ -92,6 +92,59 @@ StepBackprojection backproject_motion(const LoadedTask& task, const AtomCones& c
   return {std::move(b.base), std::move(b.weak), std::move(b.strong), b.fallback, false, b.steps, "damper"};
 }
 
+// The chain's strong backprojections, the last motion first (Buckley Alg 5.2): per motion its JSON step and
+// (with_layers) its layers for the 3-D page; `strong` is the first motion's, S_1.
+struct ChainBackprojection {
+  nlohmann::json steps;
+  std::vector<BackprojectionLayers> layers;
+  ReachedSet strong;
+  bool fallback;
+};
+
+ChainBackprojection backproject_chain(const LoadedTask& task, const AtomCones& cones, ReachedSet target,
+                                      const std::vector<std::string>& chain, double kappa, double margin,
+                                      bool with_layers) {
+  ChainBackprojection out{nlohmann::json::array(), {}, std::move(target), false};
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const StepBackprojection b =
+        backproject_motion(task, cones, out.strong, *task.task.find_motion(*it), kappa, margin);
+    out.fallback = out.fallback || b.fallback;
+    out.steps.push_back(
+        {{"motion", *it},
+         {"model", b.model},
+         {"free_rest", b.free_rest},
+         {"base", pieces_json(task, b.base.pieces())},
+         {"base_area", b.base.area()},
+         {"weak_area", b.weak.area()},
+         {"strong", pieces_json(task, b.strong.pieces())},
+         {"strong_area", b.strong.area()},
+         {"fallback", b.fallback},
+         {"work_items", b.steps},
+         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
+    if (with_layers) out.layers.push_back({*it, b.base.pieces(), b.weak.pieces(), b.strong.pieces()});
+    out.strong = b.strong;
+  }
+  return out;
+}
+
+// The outcome in words: per motion its areas, whether S lies inside S_1, the forward check and the rollouts.
+void print_backproject_text(const nlohmann::json& out, const VerifyResult& forward) {
+  for (const nlohmann::json& s : out["steps"])
+    std::cout << s["motion"].get<std::string>() << ": may stop outside its target on "
+              << s["base_area"].get<double>() << " area; weak backprojection " << s["weak_area"].get<double>()
+              << "; strong backprojection " << s["strong_area"].get<double>() << "\n";
+  std::cout << "start " << (out["start_inside"].get<bool>() ? "inside" : "not inside")
+            << " the strong backprojection\n"
+            << "forward verification from it under the rollouts' model: "
+            << (forward.reliable ? "reliable" : "not reliable: " + forward.failure) << "\n";
+  if (out.contains("check"))
+    std::cout << "check: " << out["check"]["successes"] << " of " << out["check"]["rollouts"]
+              << " rollouts from " << out["check"]["points"].size() << " points reach the goal ("
+              << out["check"]["unstable"] << " unstable, " << out["check"]["outside"] << " ends outside the "
+              << "prediction)\n";
+}
+
 void run_backproject(const BackprojectCli& cli, CommandState& state) {
   const auto start_time = std::chrono::steady_clock::now();
   const std::string text = read_task_text(cli.task);
@@ -107,40 +160,20 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   // contact lift, so a start closer to W than that may behave as one in it.
   const double margin = rollout_contact_lift(*task);
   // With model error the goal is its part on the surface (loaded_task.h).
-  ReachedSet target = ReachedSet::from_regions(*task, task->task.goal, !task->task.model_error.empty());
-  nlohmann::json steps = nlohmann::json::array();
-  std::vector<BackprojectionLayers> layers;
-  bool fallback = false;
-  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const StepBackprojection b =
-        backproject_motion(*task, cones, target, *task->task.find_motion(*it), kappa, margin);
-    fallback = fallback || b.fallback;
-    steps.push_back(
-        {{"motion", *it},
-         {"model", b.model},
-         {"free_rest", b.free_rest},
-         {"base", pieces_json(*task, b.base.pieces())},
-         {"base_area", b.base.area()},
-         {"weak_area", b.weak.area()},
-         {"strong", pieces_json(*task, b.strong.pieces())},
-         {"strong_area", b.strong.area()},
-         {"fallback", b.fallback},
-         {"work_items", b.steps},
-         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
-    if (!cli.view.empty()) layers.push_back({*it, b.base.pieces(), b.weak.pieces(), b.strong.pieces()});
-    target = b.strong;
-  }
+  const ReachedSet goal = ReachedSet::from_regions(*task, task->task.goal, !task->task.model_error.empty());
+  const ChainBackprojection backprojection =
+      backproject_chain(*task, cones, goal, chain, kappa, margin, !cli.view.empty());
+  const ReachedSet& target = backprojection.strong;  // S_1
   const ReachedSet start = ReachedSet::from_region(*task, task->task.start);
   const std::vector<ReachedPiece> outside = start.pieces_outside(target, task->surface_tolerance());
   nlohmann::json out = {{"task", task->task.name},
                         {"motions", chain},
                         {"stop_relative_speed", kappa},
                         {"margin", margin},
-                        {"steps", steps},
+                        {"steps", backprojection.steps},
                         {"start_inside", outside.empty()},
                         {"start_outside", pieces_json(*task, outside)},
-                        {"fallback", fallback}};
+                        {"fallback", backprojection.fallback}};
   // The forward verifier under the rollouts' model (contact lift, servo coast, slow stops) from S_1: the
   // backprojection is first-order, so this is what certifies S_1 for the rollouts. A spring's backprojection
   // is the via-point model's, the position form's: the forward check and the rollouts use that form.
@@ -170,29 +203,16 @@ void run_backproject(const BackprojectCli& cli, CommandState& state) {
   if (!cli.view.empty()) {
     const std::filesystem::path page = std::filesystem::path(cli.view) / "index.html";
     report::write_view_assets(cli.view);
-    report::write_view_page(backprojection_view_data(*task, layers, task->task.name + " / backprojections"),
-                            page, ".");
+    report::write_view_page(
+        backprojection_view_data(*task, backprojection.layers, task->task.name + " / backprojections"), page,
+        ".");
     out["view"] = page.string();
   }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  if (state.json) {
+  if (state.json)
     print_json(out);
-  } else {
-    for (const nlohmann::json& s : steps)
-      std::cout << s["motion"].get<std::string>() << ": may stop outside its target on "
-                << s["base_area"].get<double>() << " area; weak backprojection "
-                << s["weak_area"].get<double>() << "; strong backprojection "
-                << s["strong_area"].get<double>() << "\n";
-    std::cout << "start " << (outside.empty() ? "inside" : "not inside") << " the strong backprojection\n"
-              << "forward verification from it under the rollouts' model: "
-              << (forward.reliable ? "reliable" : "not reliable: " + forward.failure) << "\n";
-    if (out.contains("check"))
-      std::cout << "check: " << out["check"]["successes"] << " of " << out["check"]["rollouts"]
-                << " rollouts from " << out["check"]["points"].size() << " points reach the goal ("
-                << out["check"]["unstable"] << " unstable, " << out["check"]["outside"]
-                << " ends outside the "
-                << "prediction)\n";
-  }
+  else
+    print_backproject_text(out, forward);
   state.exit_status = outside.empty() && check_ok ? kExitSuccess : 1;
 }
 

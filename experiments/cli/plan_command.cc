@@ -186,6 +186,80 @@ void add_extremes(const PlanCli& cli, const std::shared_ptr<const LoadedTask>& p
   out["extremes"] = extreme_points_json(*planned, result, options);
 }
 
+// The planner's request (every field but the verifier callbacks), its goal stops and the termination of every
+// planned motion, from the task and the options.
+struct PlanSetup {
+  planner::PlanRequest request;
+  planner::GoalStops stops;
+  MotionTermination terminate;
+};
+
+PlanSetup plan_setup(const LoadedTask& task, const PlanCli& cli) {
+  const CSpace& c = task.cspace;
+  const Uncertainty& u = task.task.uncertainty;
+  PlanSetup out;
+  planner::PlanRequest& request = out.request;
+  planner::GoalStops& stops = out.stops;
+  request.start_atoms = planner::start_atoms(task);
+  request.start_point = planner::region_centroid(task.task.start);
+  request.goal_atom = planner::goal_atoms(task);
+  stops.partial_faces = planner::partial_goal_faces(task, request.goal_atom);
+  request.goal_near.assign(request.goal_atom.size(), false);
+  for (const planner::PartialGoalFace& f : stops.partial_faces)
+    request.goal_near[static_cast<std::size_t>(f.atom)] = true;
+  if (cli.termination == "position") {
+    stops.sensed_positions = planner::goal_sensed_positions(task);
+    stops.senses = planner::sensing_atoms(c, stops.sensed_positions, u.eps_s);
+    out.terminate.position = stops.sensed_positions;
+  }
+  request.eps_s = u.eps_s;
+  request.theta_f = u.theta_f;
+  request.max_atoms = cli.max_atoms > 0 ? cli.max_atoms : c.atom_count();
+  request.max_motions = cli.max_motions;
+  request.max_expansions = cli.max_expansions;
+  request.chain_projections = !cli.no_chain_projections;
+  return out;
+}
+
+// The plan's motions (name, commanded position, depth, source, cpositions, spositions) and steps (state,
+// motion, targets, heads) into out["motions"] and out["steps"].
+void add_plan_steps(const LoadedTask& task, const planner::PlanResult& plan,
+                    const std::vector<std::string>& names, const std::vector<AxisBox>& spositions,
+                    nlohmann::json* out) {
+  const CSpace& c = task.cspace;
+  nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
+  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+    const planner::GraphArc& arc = plan.steps[i].arc;
+    motions.push_back({{"name", names[i]},
+                       {"commanded", point_json(arc.commanded, task.task.dimension)},
+                       {"depth", arc.depth},
+                       {"source", arc.from_start_projection   ? "start projection"
+                                  : arc.from_chain_projection ? "chain projection"
+                                                              : "simulation"},
+                       {"cpositions", cpositions_json(arc.arc.cpositions, task.task.dimension)},
+                       {"spositions", boxes_json(spositions, task.task.dimension)}});
+    steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
+                     {"motion", names[i]},
+                     {"targets", atom_names(c, arc.arc.targets)},
+                     {"heads", states_json(c, arc.heads)}});
+  }
+  (*out)["motions"] = motions;
+  (*out)["steps"] = steps;
+}
+
+// Success: a plan whose strategy the verifier found reliable (or no motion needed) and whose rollouts, if
+// run, all reached the goal, those commanded at its cells' vertices (--extremes) too. A branching plan is
+// not verified: exit 1 with its strategy_reason.
+bool plan_verified(const planner::PlanResult& plan, const nlohmann::json& out) {
+  bool verified = plan.found && (plan.steps.empty() ||
+                                 (out.contains("verified") && out["verified"]["reliable"].get<bool>()));
+  if (out.contains("check"))
+    verified =
+        verified && out["check"]["outside"] == 0 && out["check"]["successes"] == out["check"]["rollouts"];
+  if (out.contains("extremes")) verified = verified && out["extremes"]["vertices_all_succeed"].get<bool>();
+  return verified;
+}
+
 void run_plan_search(const PlanCli& cli, CommandState& state) {
   if (cli.termination == "force")
     throw CLI::ValidationError("--termination",
@@ -198,31 +272,11 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
     throw InputError(cli.task, "dimension",
                      "the planner needs a 3-D task (its commanded positions vary in y)");
   const CSpace& c = task->cspace;
-  const Uncertainty& u = task->task.uncertainty;
-  planner::PlanRequest request;
-  request.start_atoms = planner::start_atoms(*task);
-  request.start_point = planner::region_centroid(task->task.start);
-  request.goal_atom = planner::goal_atoms(*task);
-  planner::GoalStops stops;
-  stops.partial_faces = planner::partial_goal_faces(*task, request.goal_atom);
-  request.goal_near.assign(request.goal_atom.size(), false);
-  for (const planner::PartialGoalFace& f : stops.partial_faces)
-    request.goal_near[static_cast<std::size_t>(f.atom)] = true;
-  MotionTermination terminate;  // of every planned motion
-  if (cli.termination == "position") {
-    stops.sensed_positions = planner::goal_sensed_positions(*task);
-    stops.senses = planner::sensing_atoms(c, stops.sensed_positions, u.eps_s);
-    terminate.position = stops.sensed_positions;
-  }
-  request.eps_s = u.eps_s;
-  request.theta_f = u.theta_f;
-  request.max_atoms = cli.max_atoms > 0 ? cli.max_atoms : c.atom_count();
-  request.max_motions = cli.max_motions;
-  request.max_expansions = cli.max_expansions;
-  request.chain_projections = !cli.no_chain_projections;
+  PlanSetup setup = plan_setup(*task, cli);
+  planner::PlanRequest& request = setup.request;
   const VerifyOptions verify_options = rollout_verify_options(*task);  // as `cmt verify`
   // The search's verifier checks, memoized, verified ahead in up to `--threads` forked children.
-  ChainVerdicts verdicts(*task, verify_options, terminate, cli.threads);
+  ChainVerdicts verdicts(*task, verify_options, setup.terminate, cli.threads);
   request.confirm_chain = [&](const std::vector<Vec3>& commanded) { return verdicts.get(commanded); };
   request.start_targets = [&](const Vec3& commanded) -> std::optional<std::vector<int>> {
     const planner::ChainVerdict v = verdicts.get({commanded});
@@ -231,8 +285,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   };
   request.prefetch = [&](const std::vector<std::vector<Vec3>>& chains) { verdicts.prefetch(chains); };
   request.lookahead = cli.threads;
-  const std::vector<AxisBox> spositions = stops.sensed_positions;
-  planner::AtomSimulation simulation(c, u, std::move(stops));
+  const std::vector<AxisBox> spositions = setup.stops.sensed_positions;
+  planner::AtomSimulation simulation(c, task->task.uncertainty, std::move(setup.stops));
   planner::PlanResult plan;
   if (cli.termination == "position" && spositions.empty())
     plan.reason =
@@ -260,25 +314,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"chain_projections", plan.chain_projections},
                         {"search_seconds", search_seconds},
                         {"verifier_seconds", verdicts.seconds()}};
-  nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
   const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
-  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
-    const planner::GraphArc& arc = plan.steps[i].arc;
-    motions.push_back({{"name", names[i]},
-                       {"commanded", point_json(arc.commanded, task->task.dimension)},
-                       {"depth", arc.depth},
-                       {"source", arc.from_start_projection   ? "start projection"
-                                  : arc.from_chain_projection ? "chain projection"
-                                                              : "simulation"},
-                       {"cpositions", cpositions_json(arc.arc.cpositions, task->task.dimension)},
-                       {"spositions", boxes_json(spositions, task->task.dimension)}});
-    steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
-                     {"motion", names[i]},
-                     {"targets", atom_names(c, arc.arc.targets)},
-                     {"heads", states_json(c, arc.heads)}});
-  }
-  out["motions"] = motions;
-  out["steps"] = steps;
+  add_plan_steps(*task, plan, names, spositions, &out);
   if (plan.found) {
     const auto planned = add_strategy(cli, text, *task, plan, names, spositions, out);
     if (planned && cli.extremes > 0) add_extremes(cli, planned, plan, names, out);
@@ -286,19 +323,11 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
     out["reason"] = plan.reason, out["strategy"] = nullptr;
   }
   out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Success: a plan whose strategy the verifier found reliable (or no motion needed) and whose rollouts, if
-  // run, all reached the goal, those commanded at its cells' vertices (--extremes) too. A branching plan is
-  // not verified: exit 1 with its strategy_reason.
-  bool verified = plan.found && (plan.steps.empty() ||
-                                 (out.contains("verified") && out["verified"]["reliable"].get<bool>()));
-  if (out.contains("check"))
-    verified =
-        verified && out["check"]["outside"] == 0 && out["check"]["successes"] == out["check"]["rollouts"];
-  if (out.contains("extremes")) verified = verified && out["extremes"]["vertices_all_succeed"].get<bool>();
+  const bool verified = plan_verified(plan, out);
   if (state.json)
     print_json(out);
   else
-    std::cout << (plan.found ? "found: " + out["strategy"].dump() + " " + motions.dump()
+    std::cout << (plan.found ? "found: " + out["strategy"].dump() + " " + out["motions"].dump()
                              : "not found: " + plan.reason)
               << "\n";
   state.exit_status = verified ? kExitSuccess : kExitFailureFound;

@@ -106,21 +106,80 @@ int print_edr_verdict(const EdrVerdictRequest& request, double time_limit, bool 
   return reliable ? kExitSuccess : kExitFailureFound;
 }
 
+struct VerifyCli {
+  std::string task, strategy, motion;
+  bool reached = false;
+  SpringModel spring_model = SpringModel::kVelocity;
+  double stop_relative_speed = kStopRelativeSpeed;
+  double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
+  double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
+  double time_limit = kDefaultVerifyTimeLimit;
+  bool edr = false;
+  int resolution = EdrVerdictRequest{}.resolution;
+};
+
+// `cmt verify --edr`: the EDR verdict under model error (as `cmt edr`).
+void run_verify_edr(const VerifyCli& cli, CommandState& state) {
+  if (cli.strategy.empty()) throw CLI::ValidationError("--edr", "give --strategy NAME");
+  if (cli.reached) throw CLI::ValidationError("--reached", "not with --edr (the slices list their pieces)");
+  EdrVerdictRequest request;
+  request.file = cli.task;
+  request.strategy = cli.strategy;
+  request.resolution = cli.resolution;
+  request.contact_lift = cli.contact_lift;
+  request.servo_coast = cli.servo_coast;
+  request.stop_relative_speed = cli.stop_relative_speed;
+  request.require_signal = true;
+  state.exit_status = print_edr_verdict(request, cli.time_limit, state.json);
+}
+
+// The verdict in words: per step (and branch) where its motion may terminate, and the failure if any.
+void print_verify_text(const std::string& task_name, const nlohmann::json& j) {
+  const bool reliable = j["reliable"].get<bool>();
+  std::cout << task_name << ": " << (reliable ? "reliable" : "NOT reliable") << "\n";
+  for (const auto& s : j["steps"]) {
+    std::cout << "  "
+              << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
+              << s["motion"].get<std::string>() << " terminates on:";
+    for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
+    std::cout << "\n";
+  }
+  if (!reliable) std::cout << "  " << j["failure"].get<std::string>() << "\n";
+}
+
+void run_verify(const VerifyCli& cli, CommandState& state) {
+  if (cli.edr) return run_verify_edr(cli, state);
+  const auto start = std::chrono::steady_clock::now();
+  const auto task = load_task(cli.task);
+  Strategy strategy;
+  if (!cli.strategy.empty()) {
+    strategy = task->task.strategy_named(cli.strategy);
+  } else if (!cli.motion.empty()) {
+    strategy = Strategy::sequence(cli.motion, {cli.motion});  // unknown: InputError (verify.h)
+  } else {
+    throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
+  }
+  const VerifyOptions verify_options{cli.spring_model, cli.stop_relative_speed,
+                                     cli.contact_lift >= 0 ? cli.contact_lift : rollout_contact_lift(*task),
+                                     cli.servo_coast >= 0 ? cli.servo_coast : rollout_servo_coast(*task)};
+  const nlohmann::json j =
+      verify_json_within_time_limit(*task, strategy, verify_options, cli.time_limit, cli.reached, start);
+  if (j.contains("error")) {
+    state.exit_status = report_bad_input(j["error"].get<std::string>(), state.json);
+    return;
+  }
+  const bool reliable = j["reliable"].get<bool>();
+  if (state.json)
+    print_json(j);
+  else
+    print_verify_text(task->task.name, j);
+  state.exit_status = reliable ? kExitSuccess : kExitFailureFound;
+}
+
 }  // namespace
 
 void add_verify_command(CLI::App& app, CommandState& state) {
-  struct Options {
-    std::string task, strategy, motion;
-    bool reached = false;
-    SpringModel spring_model = SpringModel::kVelocity;
-    double stop_relative_speed = kStopRelativeSpeed;
-    double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
-    double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
-    double time_limit = kDefaultVerifyTimeLimit;
-    bool edr = false;
-    int resolution = EdrVerdictRequest{}.resolution;
-  };
-  auto options = std::make_shared<Options>();
+  auto options = std::make_shared<VerifyCli>();
   auto* cmd = app.add_subcommand("verify", "Verify a strategy of damper and spring motions (Buckley ch. 4)");
   cmd->add_option("TASK", options->task, "task YAML file")->required();
   auto* strategy =
@@ -165,58 +224,7 @@ void add_verify_command(CLI::App& app, CommandState& state) {
          "with --edr: evenly spaced values per model parameter (critical values and midpoints added)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->callback([options, &state] {
-    if (options->edr) {
-      if (options->strategy.empty()) throw CLI::ValidationError("--edr", "give --strategy NAME");
-      if (options->reached)
-        throw CLI::ValidationError("--reached", "not with --edr (the slices list their pieces)");
-      EdrVerdictRequest request;
-      request.file = options->task;
-      request.strategy = options->strategy;
-      request.resolution = options->resolution;
-      request.contact_lift = options->contact_lift;
-      request.servo_coast = options->servo_coast;
-      request.stop_relative_speed = options->stop_relative_speed;
-      request.require_signal = true;
-      state.exit_status = print_edr_verdict(request, options->time_limit, state.json);
-      return;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const auto task = load_task(options->task);
-    Strategy strategy;
-    if (!options->strategy.empty()) {
-      strategy = task->task.strategy_named(options->strategy);
-    } else if (!options->motion.empty()) {
-      strategy = Strategy::sequence(options->motion, {options->motion});  // unknown: InputError (verify.h)
-    } else {
-      throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
-    }
-    const VerifyOptions verify_options{
-        options->spring_model, options->stop_relative_speed,
-        options->contact_lift >= 0 ? options->contact_lift : rollout_contact_lift(*task),
-        options->servo_coast >= 0 ? options->servo_coast : rollout_servo_coast(*task)};
-    const nlohmann::json j = verify_json_within_time_limit(*task, strategy, verify_options,
-                                                           options->time_limit, options->reached, start);
-    if (j.contains("error")) {
-      state.exit_status = report_bad_input(j["error"].get<std::string>(), state.json);
-      return;
-    }
-    const bool reliable = j["reliable"].get<bool>();
-    if (state.json) {
-      print_json(j);
-    } else {
-      std::cout << task->task.name << ": " << (reliable ? "reliable" : "NOT reliable") << "\n";
-      for (const auto& s : j["steps"]) {
-        std::cout << "  "
-                  << (s.contains("branch") ? "[branch " + std::to_string(s["branch"].get<int>()) + "] " : "")
-                  << s["motion"].get<std::string>() << " terminates on:";
-        for (const auto& p : s["termination"]) std::cout << " " << p["name"].get<std::string>();
-        std::cout << "\n";
-      }
-      if (!reliable) std::cout << "  " << j["failure"].get<std::string>() << "\n";
-    }
-    state.exit_status = reliable ? kExitSuccess : kExitFailureFound;
-  });
+  cmd->callback([options, &state] { run_verify(*options, state); });
 }
 
 }  // namespace cmt

@@ -161,6 +161,126 @@ std::string config_key(std::int64_t id, const char* table, const char* column) {
   return std::string(table) + "." + column + " (config_id " + std::to_string(id) + ")";
 }
 
+// config_id -> position in ResultsDb::configs.
+using ConfigIndex = std::map<std::int64_t, std::size_t>;
+
+// The runs table, in run order.
+void read_runs(SqliteDb& db, ResultsDb* out) {
+  Query s(db, "SELECT run_id, spec_path, created FROM runs ORDER BY run_id", "runs");
+  while (s.step()) out->runs.push_back({s.integer(0), s.text(1), s.text(2)});
+}
+
+// The configs table, in config order; fills `index`.
+void read_configs(SqliteDb& db, ResultsDb* out, ConfigIndex* index) {
+  // `controller` is a later addition to the schema: databases without it ran the default, impedance.
+  const std::string controller = has_column(db, "configs", "controller") ? "controller" : "'impedance'";
+  Query s(db,
+          "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
+          "mode, status, finished, " +
+              controller + " FROM configs ORDER BY config_id",
+          "configs");
+  while (s.step()) {
+    ConfigRow c;
+    c.config_id = s.integer(0);
+    c.run_id = s.integer(1);
+    c.unit_key = s.text(2);
+    c.task = s.text(3);
+    c.task_file = s.text(4);
+    c.task_yaml = s.text(5);
+    c.strategy = s.text(6);
+    c.params = json_column(db, s, 7, config_key(c.config_id, "configs", "params"));
+    if (c.params.is_null()) c.params = nlohmann::json::object();
+    if (!c.params.is_object())
+      throw InputError(db.path(), config_key(c.config_id, "configs", "params"), "not a JSON object");
+    c.n = s.integer(8);
+    c.seed = s.integer(9);
+    c.mode = s.text(10);
+    c.status = s.text(11);
+    c.finished = s.text(12);
+    c.controller = s.text(13);
+    if (c.controller.empty()) c.controller = "impedance";
+    (*index)[c.config_id] = out->configs.size();
+    out->configs.push_back(std::move(c));
+  }
+}
+
+// Each listed configuration's prediction (a prediction of no listed configuration has nothing to be
+// reported under).
+void read_predictions(SqliteDb& db, const ConfigIndex& index, ResultsDb* out) {
+  Query s(db, "SELECT config_id, reliable, failure, verify_seconds, verify_json FROM predictions",
+          "predictions");
+  while (s.step()) {
+    const auto it = index.find(s.integer(0));
+    if (it == index.end()) continue;  // a prediction of no listed config: nothing to report it under
+    PredictionRow p;
+    p.reliable = s.integer(1) != 0;
+    p.failure = s.text(2);
+    p.verify_seconds = s.real(3);
+    p.verify_json = json_column(db, s, 4, config_key(it->first, "predictions", "verify_json"));
+    out->configs[it->second].prediction = std::move(p);
+  }
+}
+
+// Each listed configuration's rollouts, in rollout and motion order.
+void read_rollouts(SqliteDb& db, const ConfigIndex& index, ResultsDb* out) {
+  Query s(db,
+          "SELECT config_id, rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, "
+          "termination, inside, distance, success, unstable FROM rollouts "
+          "ORDER BY config_id, rollout, motion",
+          "rollouts");
+  while (s.step()) {
+    const auto it = index.find(s.integer(0));
+    if (it == index.end()) continue;
+    RolloutRow r;
+    r.rollout = static_cast<int>(s.integer(1));
+    r.motion = static_cast<int>(s.integer(2));
+    r.start = Vec3(s.real(3), s.real(4), s.real(5));
+    r.end = Vec3(s.real(6), s.real(7), s.real(8));
+    r.atom = static_cast<int>(s.integer(9, -1));
+    r.termination = s.text(10);
+    r.inside = s.integer(11) != 0;
+    r.distance = s.real(12);
+    r.success = s.integer(13) != 0;
+    r.unstable = s.integer(14) != 0;
+    out->configs[it->second].rollouts.push_back(r);
+  }
+}
+
+// Each listed configuration's metrics.
+void read_metrics(SqliteDb& db, const ConfigIndex& index, ResultsDb* out) {
+  // `falsify` is a later addition (schema version 3): older databases ran no search.
+  const std::string falsify = has_column(db, "metrics", "falsify") ? "falsify" : "NULL";
+  Query s(db,
+          "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
+          "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
+          "rollout_seconds, verify_seconds, " +
+              falsify + " FROM metrics",
+          "metrics");
+  while (s.step()) {
+    const auto it = index.find(s.integer(0));
+    if (it == index.end()) continue;
+    MetricsRow m;
+    m.rollouts = static_cast<int>(s.integer(1));
+    m.successes = static_cast<int>(s.integer(2));
+    m.unstable = static_cast<int>(s.integer(3));
+    m.ends = static_cast<int>(s.integer(4));
+    m.outside = static_cast<int>(s.integer(5));
+    m.soundness = s.real(6);
+    m.coverage = s.real(7);
+    m.coverage_radius = s.real(8);
+    m.contact_tolerance = s.real(9);
+    m.soundness_bug = s.integer(10) != 0;
+    m.counterexample = json_column(db, s, 11, config_key(it->first, "metrics", "counterexample"));
+    m.sticking = json_column(db, s, 12, config_key(it->first, "metrics", "sticking"));
+    m.rollout_seconds = s.real(13);
+    m.verify_seconds = s.real(14);
+    m.falsify = json_column(db, s, 15, config_key(it->first, "metrics", "falsify"));
+    if (!m.falsify.is_null() && !m.falsify.is_object())
+      throw InputError(db.path(), config_key(it->first, "metrics", "falsify"), "not a JSON object");
+    out->configs[it->second].metrics = std::move(m);
+  }
+}
+
 }  // namespace
 
 ResultsDb read_results_db(const std::filesystem::path& path) {
@@ -176,113 +296,12 @@ ResultsDb read_results_db(const std::filesystem::path& path) {
 
   ResultsDb out;
   out.path = path;
-  {
-    Query s(db, "SELECT run_id, spec_path, created FROM runs ORDER BY run_id", "runs");
-    while (s.step()) out.runs.push_back({s.integer(0), s.text(1), s.text(2)});
-  }
-  std::map<std::int64_t, std::size_t> index;  // config_id -> position in out.configs
-  {
-    // `controller` is a later addition to the schema: databases without it ran the default, impedance.
-    const std::string controller = has_column(db, "configs", "controller") ? "controller" : "'impedance'";
-    Query s(db,
-            "SELECT config_id, run_id, unit_key, task, task_file, task_yaml, strategy, params, n, seed, "
-            "mode, status, finished, " +
-                controller + " FROM configs ORDER BY config_id",
-            "configs");
-    while (s.step()) {
-      ConfigRow c;
-      c.config_id = s.integer(0);
-      c.run_id = s.integer(1);
-      c.unit_key = s.text(2);
-      c.task = s.text(3);
-      c.task_file = s.text(4);
-      c.task_yaml = s.text(5);
-      c.strategy = s.text(6);
-      c.params = json_column(db, s, 7, config_key(c.config_id, "configs", "params"));
-      if (c.params.is_null()) c.params = nlohmann::json::object();
-      if (!c.params.is_object())
-        throw InputError(db.path(), config_key(c.config_id, "configs", "params"), "not a JSON object");
-      c.n = s.integer(8);
-      c.seed = s.integer(9);
-      c.mode = s.text(10);
-      c.status = s.text(11);
-      c.finished = s.text(12);
-      c.controller = s.text(13);
-      if (c.controller.empty()) c.controller = "impedance";
-      index[c.config_id] = out.configs.size();
-      out.configs.push_back(std::move(c));
-    }
-  }
-  {
-    Query s(db, "SELECT config_id, reliable, failure, verify_seconds, verify_json FROM predictions",
-            "predictions");
-    while (s.step()) {
-      const auto it = index.find(s.integer(0));
-      if (it == index.end()) continue;  // a prediction of no listed config: nothing to report it under
-      PredictionRow p;
-      p.reliable = s.integer(1) != 0;
-      p.failure = s.text(2);
-      p.verify_seconds = s.real(3);
-      p.verify_json = json_column(db, s, 4, config_key(it->first, "predictions", "verify_json"));
-      out.configs[it->second].prediction = std::move(p);
-    }
-  }
-  {
-    Query s(db,
-            "SELECT config_id, rollout, motion, start_x, start_y, start_z, end_x, end_y, end_z, atom, "
-            "termination, inside, distance, success, unstable FROM rollouts "
-            "ORDER BY config_id, rollout, motion",
-            "rollouts");
-    while (s.step()) {
-      const auto it = index.find(s.integer(0));
-      if (it == index.end()) continue;
-      RolloutRow r;
-      r.rollout = static_cast<int>(s.integer(1));
-      r.motion = static_cast<int>(s.integer(2));
-      r.start = Vec3(s.real(3), s.real(4), s.real(5));
-      r.end = Vec3(s.real(6), s.real(7), s.real(8));
-      r.atom = static_cast<int>(s.integer(9, -1));
-      r.termination = s.text(10);
-      r.inside = s.integer(11) != 0;
-      r.distance = s.real(12);
-      r.success = s.integer(13) != 0;
-      r.unstable = s.integer(14) != 0;
-      out.configs[it->second].rollouts.push_back(r);
-    }
-  }
-  {
-    // `falsify` is a later addition (schema version 3): older databases ran no search.
-    const std::string falsify = has_column(db, "metrics", "falsify") ? "falsify" : "NULL";
-    Query s(db,
-            "SELECT config_id, rollouts, successes, unstable, ends, outside, soundness, coverage, "
-            "coverage_radius, contact_tolerance, soundness_bug, counterexample, sticking, "
-            "rollout_seconds, verify_seconds, " +
-                falsify + " FROM metrics",
-            "metrics");
-    while (s.step()) {
-      const auto it = index.find(s.integer(0));
-      if (it == index.end()) continue;
-      MetricsRow m;
-      m.rollouts = static_cast<int>(s.integer(1));
-      m.successes = static_cast<int>(s.integer(2));
-      m.unstable = static_cast<int>(s.integer(3));
-      m.ends = static_cast<int>(s.integer(4));
-      m.outside = static_cast<int>(s.integer(5));
-      m.soundness = s.real(6);
-      m.coverage = s.real(7);
-      m.coverage_radius = s.real(8);
-      m.contact_tolerance = s.real(9);
-      m.soundness_bug = s.integer(10) != 0;
-      m.counterexample = json_column(db, s, 11, config_key(it->first, "metrics", "counterexample"));
-      m.sticking = json_column(db, s, 12, config_key(it->first, "metrics", "sticking"));
-      m.rollout_seconds = s.real(13);
-      m.verify_seconds = s.real(14);
-      m.falsify = json_column(db, s, 15, config_key(it->first, "metrics", "falsify"));
-      if (!m.falsify.is_null() && !m.falsify.is_object())
-        throw InputError(db.path(), config_key(it->first, "metrics", "falsify"), "not a JSON object");
-      out.configs[it->second].metrics = std::move(m);
-    }
-  }
+  read_runs(db, &out);
+  ConfigIndex index;
+  read_configs(db, &out, &index);
+  read_predictions(db, index, &out);
+  read_rollouts(db, index, &out);
+  read_metrics(db, index, &out);
   snapshot.commit();
   return out;
 }
