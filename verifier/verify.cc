@@ -57,7 +57,7 @@ VerifyStep simulate(const LoadedTask& task, const AtomCones& cones, const Motion
 class StrategyVerifier {
  public:
   StrategyVerifier(const LoadedTask& task, const Strategy& strategy, const VerifyOptions& options)
-      : lt_(task), strategy_(strategy), options_(options), cones_(task.cspace) {
+      : task_(task), strategy_(strategy), options_(options), cones_(task.cspace) {
     out_.node_step.assign(strategy.nodes.size(), -1);
     out_.spring_model = options.spring_model;
     out_.stop_relative_speed = options.stop_relative_speed;
@@ -85,15 +85,15 @@ class StrategyVerifier {
 
   // A final set (the last motion of a path, or a branch that stops) must lie in the goal.
   void check_goal(int step, const ReachedSet& final_set, const std::string& what) {
-    std::vector<ReachedPiece> outside = pieces_outside_goal(lt_, final_set);
+    std::vector<ReachedPiece> outside = pieces_outside_goal(task_, final_set);
     if (!outside.empty()) fail(step, what + " is not inside the goal", std::move(outside));
   }
 
   void simulate_node(int node_id, const ReachedSet& start, int parent_step, int branch) {
     const StrategyNode& node = strategy_.nodes[static_cast<std::size_t>(node_id)];
-    const Motion* motion = lt_.task.find_motion(node.motion);
-    if (!motion) throw TaskError(lt_.task.source_file, "motions", "no motion named '" + node.motion + "'");
-    VerifyStep step = simulate(lt_, cones_, *motion, start, options_);
+    const Motion* motion = task_.task.find_motion(node.motion);
+    if (!motion) throw TaskError(task_.task.source_file, "motions", "no motion named '" + node.motion + "'");
+    VerifyStep step = simulate(task_, cones_, *motion, start, options_);
     step.node = node_id;
     step.parent = parent_step;
     step.branch = branch;
@@ -110,7 +110,7 @@ class StrategyVerifier {
     }
     if (!s.slide_forever.empty()) {
       fail(index, "motion '" + motion->name + "' may slide forever on " +
-                      atom_list(lt_.cspace, s.slide_forever) +
+                      atom_list(task_.cspace, s.slide_forever) +
                       ": its velocity error can keep it sliding without progress, faster than the stop rule");
       // Where it stops when it does is still predicted: the later steps are simulated for the report.
     }
@@ -135,12 +135,12 @@ class StrategyVerifier {
     bool has_else = false;
     for (std::size_t i = 0; i < node.branches.size(); ++i) {
       const StrategyBranch& b = node.branches[i];
-      ReachedSet start = b.otherwise ? remaining : weakly_consistent(lt_, cones_, b.when, remaining);
+      ReachedSet start = b.otherwise ? remaining : weakly_consistent(task_, cones_, b.when, remaining);
       if (b.otherwise) {
         has_else = true;
-        remaining = ReachedSet(lt_.cspace);
+        remaining = ReachedSet(task_.cspace);
       } else {
-        remaining = without_strongly_consistent(lt_, cones_, b.when, remaining);
+        remaining = without_strongly_consistent(task_, cones_, b.when, remaining);
       }
       auto shared = std::make_shared<const ReachedSet>(std::move(start));
       out_.steps[static_cast<std::size_t>(index)].branches.push_back({shared, -1});
@@ -163,7 +163,7 @@ class StrategyVerifier {
     }
   }
 
-  const LoadedTask& lt_;
+  const LoadedTask& task_;
   const Strategy& strategy_;
   const VerifyOptions options_;
   const AtomCones cones_;
