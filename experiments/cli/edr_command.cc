@@ -1,11 +1,11 @@
-// `cmt edr TASK --strategy NAME [--resolution K] [--first-order] [--check N --per-world K --seed S --threads
-// T --check-mode M] [--json]`: one-step error detection and recovery under model error (Donald 1987;
-// docs/edr.md). Slices the task's model parameters (models/ model_error.h), runs the strategy in each slice
-// under the rollouts' model and reports per slice the forward projection F, the strong and weak preimages P
-// and P~ of the goal, the failure region H and whether the terminations in the goal are distinguishable from
-// H across all slices; --check runs MuJoCo rollouts in N worlds drawn over the parameters' intervals
-// (experiments/edr/edr_check.h). Exit 0: EDR-reliable (and the check, if run, found no forbidden outcome and
-// no end outside a world's prediction); 1: not; 2: bad input.
+// `cmt edr TASK --strategy NAME [--resolution K] [--refine D] [--first-order] [--check N --per-world K --seed
+// S --threads T --check-mode M] [--json]`: one-step error detection and recovery under model error (Donald
+// 1987; docs/edr.md). Slices the task's model parameters (models/ model_error.h), runs the strategy in each
+// slice under the rollouts' model and reports per slice the forward projection F, the strong and weak
+// preimages P and P~ of the goal, the failure region H and whether the terminations in the goal are
+// distinguishable from H across all slices; --check runs MuJoCo rollouts in N worlds drawn over the
+// parameters' intervals (experiments/edr/edr_check.h). Exit 0: EDR-reliable (and the check, if run, found no
+// forbidden outcome and no end outside a world's prediction); 1: not; 2: bad input.
 #include <chrono>
 #include <cstdint>
 #include <iostream>
@@ -24,6 +24,7 @@ constexpr std::int64_t kMaxCheckRollouts = 1000000;
 struct EdrCli {
   std::string task, strategy;
   int resolution = 5;
+  int refine_depth = EdrVerdictRequest{}.refine_depth;
   bool first_order = false;
   int check = 0, per_world = 10, threads = 1;
   std::uint64_t seed = 1;
@@ -69,6 +70,7 @@ void run_edr(const EdrCli& cli, CommandState& state) {
   request.file = cli.task;
   request.strategy = cli.strategy;
   request.resolution = cli.resolution;
+  request.refine_depth = cli.refine_depth;
   request.first_order = cli.first_order;
   const EdrResult r = edr_verdict(*task, request);
   nlohmann::json out = edr_verdict_json(task->task, request, r);
@@ -95,6 +97,13 @@ void add_edr_command(CLI::App& app, CommandState& state) {
                   "evenly spaced values per model parameter, ends included (default 5; critical values and "
                   "the midpoints between them are added)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option(
+         "--refine", cli->refine_depth,
+         "bisections of adjacent slices where one has a goal and the other not, or where the midpoint's "
+         "terminations leave the pair's sweep (docs/edr.md \"Between slices\"; one continuous "
+         "parameter; 0: none)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
   cmd->add_flag("--first-order", cli->first_order,
                 "Buckley's first-order model (no contact lift, servo coast or slow stops) instead of the "
                 "rollouts'");

@@ -116,6 +116,7 @@ struct VerifyCli {
   double time_limit = kDefaultVerifyTimeLimit;
   bool edr = false;
   int resolution = EdrVerdictRequest{}.resolution;
+  int refine_depth = EdrVerdictRequest{}.refine_depth;
 };
 
 // `cmt verify --edr`: the EDR verdict under model error (as `cmt edr`).
@@ -126,6 +127,7 @@ void run_verify_edr(const VerifyCli& cli, CommandState& state) {
   request.file = cli.task;
   request.strategy = cli.strategy;
   request.resolution = cli.resolution;
+  request.refine_depth = cli.refine_depth;
   request.contact_lift = cli.contact_lift;
   request.servo_coast = cli.servo_coast;
   request.stop_relative_speed = cli.stop_relative_speed;
@@ -223,6 +225,12 @@ void add_verify_command(CLI::App& app, CommandState& state) {
          "--resolution", options->resolution,
          "with --edr: evenly spaced values per model parameter (critical values and midpoints added)")
       ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option(
+         "--refine", options->refine_depth,
+         "with --edr: bisections of adjacent slices where the goal appears or the terminations leave "
+         "their sweep (as cmt edr)")
+      ->check(CLI::Range(0, 10))
       ->capture_default_str();
   cmd->callback([options, &state] { run_verify(*options, state); });
 }

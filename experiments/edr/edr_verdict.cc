@@ -104,6 +104,7 @@ EdrResult edr_verdict(const LoadedTask& task, const EdrVerdictRequest& request) 
   options.backprojection_margin = [request](const LoadedTask& slice) {
     return slice_options(slice, request).contact_lift;
   };
+  options.refine_depth = request.refine_depth;
   return verify_edr(task.task, strategy.motions, slices, options);
 }
 
@@ -124,6 +125,7 @@ nlohmann::json edr_verdict_json(const Task& task, const EdrVerdictRequest& reque
           {"strategy", request.strategy},
           {"motions", task.strategy_named(request.strategy).motions},
           {"resolution", request.resolution},
+          {"refine_depth", request.refine_depth},
           {"model", request.first_order ? "first-order" : "rollouts"},
           {"parameters", parameters_json(task, request.resolution)},
           {"slices", slices},

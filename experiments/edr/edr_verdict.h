@@ -15,6 +15,7 @@ struct EdrVerdictRequest {
   std::string file;      // the task file, for messages
   std::string strategy;  // a decision-free strategy of the task
   int resolution = 5;    // evenly spaced values per model parameter (model_error.h slice_values)
+  int refine_depth = 3;  // slicing-gap refinement (verifier/edr/edr.h EdrOptions::refine_depth)
   // The verifier's model in each slice: Buckley's first order (VerifyOptions{}), or the rollouts' model of
   // the slice's MuJoCo scene (verifier_model.h rollout_verify_options) with the contact lift, servo coast
   // and stop rule replaced where set here (>= 0).

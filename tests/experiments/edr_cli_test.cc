@@ -21,7 +21,10 @@ TEST(CmtEdr, StepOffsetEdrIsReliableAndSteepIsNot) {
   ASSERT_EQ(j["parameters"].size(), 1u);
   EXPECT_EQ(j["parameters"][0]["name"], "alpha");
   EXPECT_EQ(j["parameters"][0]["critical"], nlohmann::json::array({0.0}));
-  ASSERT_EQ(j["slices"].size(), 5u);
+  // The 5 slices (-1, -.5, 0, .5, 1) and the refinement toward where the goal appears (--refine 3): .25,
+  // .125, .0625 between 0 and .5.
+  EXPECT_EQ(j["refine_depth"], 3);
+  ASSERT_EQ(j["slices"].size(), 8u);
   for (const auto& s : j["slices"]) {
     const double alpha = s["params"]["alpha"].get<double>();
     EXPECT_EQ(s["goal_empty"].get<bool>(), alpha <= 0) << alpha;
@@ -34,6 +37,10 @@ TEST(CmtEdr, StepOffsetEdrIsReliableAndSteepIsNot) {
     EXPECT_TRUE(s["distinguishable"].get<bool>());
   }
   EXPECT_TRUE(j["confusions"].empty());
+
+  const Result coarse = run("edr " + task("step_offset") + " --strategy edr --refine 0 --json");
+  ASSERT_EQ(coarse.status, 0) << coarse.out;
+  EXPECT_EQ(nlohmann::json::parse(coarse.out)["slices"].size(), 5u);
 
   const Result steep = run("edr " + task("step_offset") + " --strategy steep --json");
   ASSERT_EQ(steep.status, 1) << steep.out;
@@ -65,11 +72,15 @@ TEST(CmtVerifyEdr, ReadsTheMotionsEdrPredicate) {
   const auto j = nlohmann::json::parse(edr.out);
   EXPECT_TRUE(j["edr_reliable"].get<bool>());
   EXPECT_TRUE(j["reliable"].get<bool>());
-  EXPECT_EQ(j["slices"].size(), 5u);
-  // The same verdict as `cmt edr` at another resolution: 3 values, the critical 0 and 2 midpoints.
+  EXPECT_EQ(j["slices"].size(), 8u);  // as `cmt edr`: 5 and the refinement toward alpha = 0
+  // The same verdict at another resolution: 3 values, the critical 0 and 2 midpoints, refined the same way;
+  // without refinement the 5 alone.
   const Result fine = run("verify " + task("step_offset") + " --strategy edr --edr --resolution 3 --json");
   ASSERT_EQ(fine.status, 0) << fine.out;
-  EXPECT_EQ(nlohmann::json::parse(fine.out)["slices"].size(), 5u);
+  EXPECT_EQ(nlohmann::json::parse(fine.out)["slices"].size(), 8u);
+  const Result coarse = run("verify " + task("step_offset") + " --strategy edr --edr --refine 0 --json");
+  ASSERT_EQ(coarse.status, 0) << coarse.out;
+  EXPECT_EQ(nlohmann::json::parse(coarse.out)["slices"].size(), 5u);
 
   const Result steep = run("verify " + task("step_offset") + " --strategy steep --edr --json");
   EXPECT_EQ(steep.status, 1) << steep.out;
@@ -90,11 +101,19 @@ TEST(CmtVerifyEdr, HoleWidthTwoMotionPlanIsEdrReliable) {
   EXPECT_TRUE(j["edr_reliable"].get<bool>());
   EXPECT_FALSE(j["timed_out"].get<bool>());
   EXPECT_EQ(j["parameters"][0]["critical"], nlohmann::json::array({1.0}));
+  int toward_critical = 0, at_the_kink = 0;
   for (const auto& s : j["slices"]) {
     const double w = s["params"]["hole_width"].get<double>();
     EXPECT_EQ(s["goal_empty"].get<bool>(), w <= 1) << w;
     EXPECT_EQ(s["success_area"].get<double>() > 0, w > 1) << w;
+    toward_critical += w > 1 && w < 1.125 ? 1 : 0;
+    at_the_kink += w > 1.75 && w < 2 ? 1 : 0;
   }
+  // Refinement: three bisections from 1.125 toward the critical width 1, where the goal appears; and slices
+  // between 1.75 and 2, where the stop on the bottom reaches the right wall at 1.75 (x = w / 2 - .5) but
+  // stops short of it at 2, so the pair's sweep misses the worlds between (docs/edr.md "Between slices").
+  EXPECT_EQ(toward_critical, 3);
+  EXPECT_GE(at_the_kink, 1);
 }
 
 TEST(CmtVerifyEdr, AMalformedEdrKeyNamesIt) {

@@ -6,6 +6,7 @@
 #include "models/task_error.h"
 #include "verifier/atom_cone.h"
 #include "verifier/backprojection.h"
+#include "verifier/edr/distinguish.h"
 
 namespace cmt {
 namespace {
@@ -170,6 +171,72 @@ std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& sli
   return out;
 }
 
+// Is every vertex of every piece of `pieces` within `tol` of one hull of a piece of `a` and a coplanar piece
+// of `b` on the same atom (their sweep, as swept() forms it), or of a piece of `a` or `b` itself?
+bool covered_by_sweep(const std::vector<ReachedPiece>& pieces, const std::vector<ReachedPiece>& a,
+                      const std::vector<ReachedPiece>& b, double tol) {
+  std::vector<ReachedPiece> hulls = a;
+  hulls.insert(hulls.end(), b.begin(), b.end());
+  for (const ReachedPiece& pa : a)
+    for (const ReachedPiece& pb : b) {
+      if (pa.atom != pb.atom || pa.kind != pb.kind) continue;
+      std::vector<Vec3> points = pa.polygon;
+      points.insert(points.end(), pb.polygon.begin(), pb.polygon.end());
+      if (coplanar(points, tol)) hulls.push_back(ReachedPiece{pa.atom, pa.kind, points, {}, 0});
+    }
+  std::vector<ConvexPiece> convex;
+  for (const ReachedPiece& h : hulls) convex.push_back(convex_piece(h));
+  for (const ReachedPiece& piece : pieces) {
+    bool inside_one = false;
+    for (std::size_t k = 0; k < hulls.size() && !inside_one; ++k) {
+      if (hulls[k].atom != piece.atom || hulls[k].kind != piece.kind) continue;
+      inside_one = std::all_of(piece.polygon.begin(), piece.polygon.end(),
+                               [&](const Vec3& q) { return point_to_piece(q, convex[k]) <= tol; });
+    }
+    if (!inside_one) return false;
+  }
+  return true;
+}
+
+std::vector<ReachedPiece> success_pieces_of(const EdrSlice& s) {
+  return s.success ? s.success->pieces() : std::vector<ReachedPiece>{};
+}
+
+// Does the midpoint slice m need to join the slices between a and b (EdrOptions::refine_depth)?
+bool needs_midpoint(const EdrSlice& a, const EdrSlice& b, const EdrSlice& m) {
+  if (a.goal_empty != b.goal_empty || !m.terminates) return true;
+  if (!a.terminates || !b.terminates) return false;  // the verdict fails at a or b anyway
+  const double tol = kEdrContactRelativeSlack * m.task->cspace.scale();
+  return !covered_by_sweep(success_pieces_of(m), success_pieces_of(a), success_pieces_of(b), tol) ||
+         !covered_by_sweep(m.failure_pieces, a.failure_pieces, b.failure_pieces, tol);
+}
+
+// Slicing-gap refinement (EdrOptions::refine_depth): bisects adjacent slices of the task's one continuous
+// parameter where needs_midpoint says so, appending the midpoints to *slices.
+void refine_slices(const Task& task, const std::vector<std::string>& motions, const EdrOptions& options,
+                   std::vector<EdrSlice>* slices) {
+  if (task.model_error.size() != 1 || task.model_error[0].discrete()) return;
+  struct Gap {
+    int a, b, depth;
+  };
+  std::vector<Gap> work;
+  for (const auto& [i, j] : adjacent_slices(task, *slices)) work.push_back({i, j, 0});
+  while (!work.empty()) {
+    const Gap g = work.back();
+    work.pop_back();
+    if (g.depth >= options.refine_depth) continue;
+    const double mid = 0.5 * ((*slices)[g.a].values[0] + (*slices)[g.b].values[0]);
+    EdrSlice m = run_slice(task, motions, {mid}, options);
+    if (!needs_midpoint((*slices)[g.a], (*slices)[g.b], m)) continue;
+    slices->push_back(std::move(m));
+    const int k = static_cast<int>(slices->size()) - 1;
+    work.push_back({g.a, k, g.depth + 1});
+    work.push_back({k, g.b, g.depth + 1});
+  }
+  std::stable_sort(slices->begin(), slices->end(),
+                   [](const EdrSlice& x, const EdrSlice& y) { return x.values < y.values; });
+}
+
 // (c): every termination in G against every point of H, over all pairs of slices and the sweeps between
 // adjacent ones. Every pair is tested (the per-slice flags need them all); the first confusion_limit
 // confusable pairs are listed.
@@ -214,6 +281,7 @@ EdrResult verify_edr(const Task& task, const std::vector<std::string>& motions,
   EdrResult out;
   for (const std::vector<double>& values : slices)
     out.slices.push_back(run_slice(task, motions, values, options));
+  if (options.refine_depth > 0) refine_slices(task, motions, options, &out.slices);
   for (const EdrSlice& s : out.slices) {
     out.terminates = out.terminates && s.terminates;
     out.reaches_goal = out.reaches_goal || (s.success && !s.success->empty());

@@ -66,6 +66,11 @@ struct EdrOptions {
   std::size_t confusion_limit = 20;  // confusable pairs listed (the verdict counts them all)
   // The preimages P and P~ (reported, not needed by the verdict (a)-(c)); the planner's search skips them.
   bool preimages = true;
+  // Slicing-gap refinement (docs/edr.md "Between slices"), for a task with one continuous model parameter:
+  // each pair of adjacent slices is bisected, up to this many times, where exactly one of the two has a goal
+  // or the midpoint's terminations in G or H are not covered by the pair's sweep (a stop region whose extent
+  // has a kink between them). The midpoint joins the slices only then. 0: the given slices only.
+  int refine_depth = 0;
 };
 
 struct EdrConfusion {
