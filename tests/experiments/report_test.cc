@@ -934,6 +934,15 @@ TEST(Report, AdversarialRolloutsSectionListsTheSearch) {
 // The per-motion figure of the search (experiments/report/falsify_figure.h): config 1's square lies on the
 // cube's bottom, so the top view shows it widest. The search's ends are drawn by phase, an end outside as a
 // red cross, the unreached piece's outline and the unreached gap in ink; the random ends keep their dots.
+// A report of the test database with config 1's metrics.falsify set to `falsify`.
+Report report_with_search(const std::string& name, const json& falsify) {
+  return make_report(name, [&](const fs::path& db) {
+    Db edit(db, false);
+    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
+    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {falsify.dump()});
+  });
+}
+
 // The failure search under an unreliable verdict: its column, the note and the summary count, for a search
 // that found a failing rollout and for one that did not (a false alarm).
 TEST(Report, AdversarialRolloutsShowTheFailureSearch) {
@@ -947,11 +956,7 @@ TEST(Report, AdversarialRolloutsShowTheFailureSearch) {
   failed["failure_closest"] = 0.25;
   failed["failures"] = 3;
   failed["first_failure"] = {{"how", "failure"}, {"goal_distance", 0.125}, {"replay", kFalsifyReplay}};
-  const Report r = make_report("failure_search", [&](const fs::path& db) {
-    Db edit(db, false);
-    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
-    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {failed.dump()});
-  });
+  const Report r = report_with_search("failure_search", failed);
   ASSERT_EQ(r.status, 0);
   const std::string cell =
       "400 rollouts, closest 0.25 to a predicted failure; 3 failed (first by failure, "
@@ -970,11 +975,7 @@ TEST(Report, AdversarialRolloutsShowTheFailureSearch) {
   none["failures"] = 0;
   none["first_failure"] = nullptr;
   none["failure_closest"] = nullptr;
-  const Report q = make_report("false_alarm", [&](const fs::path& db) {
-    Db edit(db, false);
-    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
-    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {none.dump()});
-  });
+  const Report q = report_with_search("false_alarm", none);
   ASSERT_EQ(q.status, 0);
   EXPECT_NE(q.html.find("<td>400 rollouts; none failed: a false alarm</td></tr>"), std::string::npos);
   EXPECT_NE(q.markdown.find("failure search: none of 400 rollouts failed (a false alarm)"),
@@ -986,11 +987,7 @@ TEST(Report, AdversarialRolloutsShowTheFailureSearch) {
   json reliable = falsify_json_of_config1();
   reliable["failure_budget"] = 400;
   reliable["failure_searched"] = false;
-  const Report t = make_report("reliable_budget", [&](const fs::path& db) {
-    Db edit(db, false);
-    edit.exec("ALTER TABLE metrics ADD COLUMN falsify TEXT");
-    edit.insert("UPDATE metrics SET falsify = ? WHERE config_id = 1", {reliable.dump()});
-  });
+  const Report t = report_with_search("reliable_budget", reliable);
   ASSERT_EQ(t.status, 0);
   EXPECT_NE(t.html.find("<td>not run (reliable)</td></tr>"), std::string::npos);
   EXPECT_EQ(t.markdown.find("failure search under"), std::string::npos);
