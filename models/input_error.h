@@ -1,7 +1,7 @@
-// The error every bad-input path raises: it names the file, the key (a YAML key path, a command-line option or
-// a database table) and the reason; the cmt program turns it into exit status 2. A YAML syntax error also
-// carries where in the text it is (1-based line and column). Task files raise TaskError (models/task_error.h),
-// sweep specs, results databases and command-line options raise InputError itself.
+// The error every bad-input path raises: it names the file, the key (a YAML key path, a command-line option
+// or a database table) and the reason; the cmt program turns it into exit status 2. A YAML syntax error also
+// carries where in the text it is (1-based line and column). Task files raise TaskError
+// (models/task_error.h), sweep specs, results databases and command-line options raise InputError itself.
 #pragma once
 
 #include <stdexcept>
