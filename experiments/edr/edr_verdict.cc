@@ -125,7 +125,7 @@ nlohmann::json edr_verdict_json(const Task& task, const EdrVerdictRequest& reque
           {"strategy", request.strategy},
           {"motions", task.strategy_named(request.strategy).motions},
           {"resolution", request.resolution},
-          {"refine_depth", request.refine_depth},
+          {"refine_depth", r.refine_depth},
           {"model", request.first_order ? "first-order" : "rollouts"},
           {"parameters", parameters_json(task, request.resolution)},
           {"slices", slices},

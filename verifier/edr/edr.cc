@@ -171,10 +171,11 @@ std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& sli
   return out;
 }
 
-// Is every vertex of every piece of `pieces` within `tol` of one hull of a piece of `a` and a coplanar piece
-// of `b` on the same atom (their sweep, as swept() forms it), or of a piece of `a` or `b` itself?
+// Is every vertex of every piece of `pieces` within `tol` of one hull of a piece of `a` and a piece of `b` on
+// the same atom, coplanar within `coplanar_tol` (their sweep, as swept() forms it), or of a piece of `a` or
+// `b` itself?
 bool covered_by_sweep(const std::vector<ReachedPiece>& pieces, const std::vector<ReachedPiece>& a,
-                      const std::vector<ReachedPiece>& b, double tol) {
+                      const std::vector<ReachedPiece>& b, double tol, double coplanar_tol) {
   std::vector<ReachedPiece> hulls = a;
   hulls.insert(hulls.end(), b.begin(), b.end());
   for (const ReachedPiece& pa : a)
@@ -182,7 +183,7 @@ bool covered_by_sweep(const std::vector<ReachedPiece>& pieces, const std::vector
       if (pa.atom != pb.atom || pa.kind != pb.kind) continue;
       std::vector<Vec3> points = pa.polygon;
       points.insert(points.end(), pb.polygon.begin(), pb.polygon.end());
-      if (coplanar(points, tol)) hulls.push_back(ReachedPiece{pa.atom, pa.kind, points, {}, 0});
+      if (coplanar(points, coplanar_tol)) hulls.push_back(ReachedPiece{pa.atom, pa.kind, points, {}, 0});
     }
   std::vector<ConvexPiece> convex;
   for (const ReachedPiece& h : hulls) convex.push_back(convex_piece(h));
@@ -206,16 +207,20 @@ std::vector<ReachedPiece> success_pieces_of(const EdrSlice& s) {
 bool needs_midpoint(const EdrSlice& a, const EdrSlice& b, const EdrSlice& m) {
   if (a.goal_empty != b.goal_empty || !m.terminates) return true;
   if (!a.terminates || !b.terminates) return false;  // the verdict fails at a or b anyway
-  const double tol = kEdrContactRelativeSlack * m.task->cspace.scale();
-  return !covered_by_sweep(success_pieces_of(m), success_pieces_of(a), success_pieces_of(b), tol) ||
-         !covered_by_sweep(m.failure_pieces, a.failure_pieces, b.failure_pieces, tol);
+  // Within the predicate's contact slack of the sweep, which swept() forms at the goal tolerance.
+  const double scale = m.task->cspace.scale();
+  const double tol = kEdrContactRelativeSlack * scale, coplanar_tol = kGoalRelativeTolerance * scale;
+  return !covered_by_sweep(success_pieces_of(m), success_pieces_of(a), success_pieces_of(b), tol,
+                           coplanar_tol) ||
+         !covered_by_sweep(m.failure_pieces, a.failure_pieces, b.failure_pieces, tol, coplanar_tol);
 }
 
 // Slicing-gap refinement (EdrOptions::refine_depth): bisects adjacent slices of the task's one continuous
-// parameter where needs_midpoint says so, appending the midpoints to *slices.
-void refine_slices(const Task& task, const std::vector<std::string>& motions, const EdrOptions& options,
-                   std::vector<EdrSlice>* slices) {
-  if (task.model_error.size() != 1 || task.model_error[0].discrete()) return;
+// parameter where needs_midpoint says so, appending the midpoints to *slices (never past kMaxSweptSlices,
+// where sweeps stop). Returns the depth applied: 0 for other tasks.
+int refine_slices(const Task& task, const std::vector<std::string>& motions, const EdrOptions& options,
+                  std::vector<EdrSlice>* slices) {
+  if (options.refine_depth <= 0 || task.model_error.size() != 1 || task.model_error[0].discrete()) return 0;
   struct Gap {
     int a, b, depth;
   };
@@ -224,7 +229,7 @@ void refine_slices(const Task& task, const std::vector<std::string>& motions, co
   while (!work.empty()) {
     const Gap g = work.back();
     work.pop_back();
-    if (g.depth >= options.refine_depth) continue;
+    if (g.depth >= options.refine_depth || slices->size() >= kMaxSweptSlices) continue;
     const double mid = 0.5 * ((*slices)[g.a].values[0] + (*slices)[g.b].values[0]);
     EdrSlice m = run_slice(task, motions, {mid}, options);
     if (!needs_midpoint((*slices)[g.a], (*slices)[g.b], m)) continue;
@@ -235,6 +240,7 @@ void refine_slices(const Task& task, const std::vector<std::string>& motions, co
   }
   std::stable_sort(slices->begin(), slices->end(),
                    [](const EdrSlice& x, const EdrSlice& y) { return x.values < y.values; });
+  return options.refine_depth;
 }
 
 // (c): every termination in G against every point of H, over all pairs of slices and the sweeps between
@@ -281,7 +287,7 @@ EdrResult verify_edr(const Task& task, const std::vector<std::string>& motions,
   EdrResult out;
   for (const std::vector<double>& values : slices)
     out.slices.push_back(run_slice(task, motions, values, options));
-  if (options.refine_depth > 0) refine_slices(task, motions, options, &out.slices);
+  out.refine_depth = refine_slices(task, motions, options, &out.slices);
   for (const EdrSlice& s : out.slices) {
     out.terminates = out.terminates && s.terminates;
     out.reaches_goal = out.reaches_goal || (s.success && !s.success->empty());

@@ -90,8 +90,9 @@ struct EdrResult {
   // one parameter at a time (grid edges, not the inside of a cell of several parameters), and none for more
   // than 2000 slices.
   std::vector<SlicePiece> swept_success, swept_failure;
-  bool terminates = true;       // (a)
-  bool reaches_goal = false;    // (b)
+  int refine_depth = 0;       // the refinement applied (EdrOptions::refine_depth; 0 where it does not apply)
+  bool terminates = true;     // (a)
+  bool reaches_goal = false;  // (b)
   bool distinguishable = true;  // (c)
   bool linked = true;           // (d)
   bool edr_reliable = false;

@@ -34,8 +34,6 @@ TEST(StepOffsetEdr, TheGoalVanishesExactlyWhereTheBlocksMeet) {
   for (const EdrSlice& s : r.slices) EXPECT_EQ(s.goal_empty, s.values[0] <= 0) << s.values[0];
 }
 
-// Donald's ground truth for Example (1): the backprojection is empty where G vanishes, H is non-empty only
-// there, and G and H are distinguishable, so the motion is an EDR strategy.
 // Slicing-gap refinement: between alpha = 0 (no goal) and .5 the pair straddles the goal's appearance, so it
 // is bisected to the depth (.25, then .125, then .0625 toward 0); elsewhere the landings on A's face (a
 // region that scales with alpha about B's rim) and the far wall's H (the same for every alpha <= 0) move
@@ -50,10 +48,20 @@ TEST(StepOffsetEdr, RefinementBisectsTowardWhereTheGoalAppears) {
   EXPECT_EQ(alphas, (std::vector<double>{-1, -0.5, 0, 0.0625, 0.125, 0.25, 0.5, 1}));
   for (const EdrSlice& s : r.slices) EXPECT_EQ(s.goal_empty, s.values[0] <= 0) << s.values[0];
   EXPECT_TRUE(r.edr_reliable) << r.reason;
-  // The refined slices' goal terminations lie in the sweep of their neighbours, as the predicate uses it.
-  EXPECT_FALSE(r.swept_success.empty());
+  EXPECT_EQ(r.refine_depth, 3);
+  // For alpha > 0 the robot flies off B's rim into the gap and sticks on A's face: the refined slices too
+  // reach the goal and are reliable.
+  for (const EdrSlice& s : r.slices)
+    if (s.values[0] > 0 && s.values[0] < 0.5) {
+      EXPECT_TRUE(s.reliable) << s.values[0];
+      EXPECT_TRUE(s.success && !s.success->empty()) << s.values[0];
+    }
+  // Without the option no refinement is applied.
+  EXPECT_EQ(verify_edr(task->task, {"left"}, model_slices(task->task, 5), EdrOptions{}).refine_depth, 0);
 }
 
+// Donald's ground truth for Example (1): the backprojection is empty where G vanishes, H is non-empty only
+// there, and G and H are distinguishable, so the motion is an EDR strategy.
 TEST(StepOffsetEdr, LeftIsEdrReliableWithFailureOnlyWhereTheGoalVanishes) {
   const EdrResult r = run("left");
   EXPECT_TRUE(r.terminates);
