@@ -145,46 +145,47 @@ double convex_area(const std::vector<Vec3>& polygon) {
   return 0.5 * sum.norm();
 }
 
+// The sweep of two slices' pieces: per pair on the same atom and kind whose points are coplanar within tol,
+// their convex hull (keeping the first piece's atom and kind; its area the hull's).
+std::vector<ReachedPiece> sweep_hulls(const std::vector<ReachedPiece>& first,
+                                      const std::vector<ReachedPiece>& second, double tol) {
+  std::vector<ReachedPiece> out;
+  for (const ReachedPiece& a : first)
+    for (const ReachedPiece& b : second) {
+      if (a.atom != b.atom || a.kind != b.kind) continue;
+      std::vector<Vec3> points = a.polygon;
+      points.insert(points.end(), b.polygon.begin(), b.polygon.end());
+      if (points.empty() || !coplanar(points, tol)) continue;
+      ReachedPiece hull = a;
+      hull.polygon = convex_piece(ReachedPiece{a.atom, a.kind, points, {}, 0}).points;
+      hull.holes.clear();
+      hull.area = convex_area(hull.polygon);
+      out.push_back(std::move(hull));
+    }
+  return out;
+}
+
 // The swept pieces between adjacent slices (EdrResult::swept_success): `pieces(i)` gives slice i's.
-// A swept piece keeps slice i's index, C-space and the atom (whose friction cone it stands for); its polygon
-// is the hull, its area the hull's.
+// A swept piece keeps slice i's index, C-space and the atom (whose friction cone it stands for).
 template <class Pieces>
 std::vector<SlicePiece> swept(const Task& task, const std::vector<EdrSlice>& slices, const Pieces& pieces) {
   std::vector<SlicePiece> out;
   for (const auto& [i, j] : adjacent_slices(task, slices)) {
     if (!slices[i].termination || !slices[j].termination) continue;
     const double tol = kGoalRelativeTolerance * slices[i].task->cspace.scale();
-    const std::vector<ReachedPiece>&first = pieces(i), &second = pieces(j);
-    for (const ReachedPiece& a : first)
-      for (const ReachedPiece& b : second) {
-        if (a.atom != b.atom || a.kind != b.kind) continue;
-        std::vector<Vec3> points = a.polygon;
-        points.insert(points.end(), b.polygon.begin(), b.polygon.end());
-        if (points.empty() || !coplanar(points, tol)) continue;
-        ReachedPiece hull = a;
-        hull.polygon = convex_piece(ReachedPiece{a.atom, a.kind, points, {}, 0}).points;
-        hull.holes.clear();
-        hull.area = convex_area(hull.polygon);
-        out.push_back({&slices[i].task->cspace, i, hull});
-      }
+    for (ReachedPiece& hull : sweep_hulls(pieces(i), pieces(j), tol))
+      out.push_back({&slices[i].task->cspace, i, std::move(hull)});
   }
   return out;
 }
 
-// Is every vertex of every piece of `pieces` within `tol` of one hull of a piece of `a` and a piece of `b` on
-// the same atom, coplanar within `coplanar_tol` (their sweep, as swept() forms it), or of a piece of `a` or
-// `b` itself?
+// Is every vertex of every piece of `pieces` within `tol` of one piece of `a` or `b` or of their sweep
+// (sweep_hulls at `coplanar_tol`, as swept() forms it) on the same atom?
 bool covered_by_sweep(const std::vector<ReachedPiece>& pieces, const std::vector<ReachedPiece>& a,
                       const std::vector<ReachedPiece>& b, double tol, double coplanar_tol) {
   std::vector<ReachedPiece> hulls = a;
   hulls.insert(hulls.end(), b.begin(), b.end());
-  for (const ReachedPiece& pa : a)
-    for (const ReachedPiece& pb : b) {
-      if (pa.atom != pb.atom || pa.kind != pb.kind) continue;
-      std::vector<Vec3> points = pa.polygon;
-      points.insert(points.end(), pb.polygon.begin(), pb.polygon.end());
-      if (coplanar(points, coplanar_tol)) hulls.push_back(ReachedPiece{pa.atom, pa.kind, points, {}, 0});
-    }
+  for (ReachedPiece& hull : sweep_hulls(a, b, coplanar_tol)) hulls.push_back(std::move(hull));
   std::vector<ConvexPiece> convex;
   for (const ReachedPiece& h : hulls) convex.push_back(convex_piece(h));
   for (const ReachedPiece& piece : pieces) {
