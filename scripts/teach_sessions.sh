@@ -26,6 +26,7 @@ teach hole_teach hole --check 1000                # Buckley §5.2: (p2, p1)
 teach hole_too_deep hole --depth 1                # p2 too deep: not solved, names the top face
 teach tslot_teach tslot --depth 1 --check 300     # beyond the thesis: (m1, m2)
 teach peg_in_hole_real_teach peg_in_hole_real --check 300  # §6.3.4's scaled hole: (p2, p1)
+teach ridge_dispatch ridge --check 300            # Alg 5.1: down, then sense: right or stop
 # Buckley Alg 5.2 for dampers: two_blocks' (v3, v2) backprojected from the goal, rollouts from 10 points of S.
 status=0
 build/bin/cmt backproject models/tasks/two_blocks.yaml --motions v3,v2 --check 10 --points 10 --seed 1 \

@@ -61,9 +61,8 @@ std::string pieces_text(const LoadedTask& task, const std::string& motion,
 
 void print_step(std::ostream& os, const teaching::Session& session, const teaching::TeachStep& step,
                 std::size_t index) {
-  os << "step " << index + 1 << ": " << step.motion << ", chain [";
-  for (std::size_t i = 0; i < step.chain.size(); ++i) os << (i ? ", " : "") << step.chain[i];
-  os << "]\n";
+  os << "step " << index + 1 << ": " << step.motion << ", chain [" << teaching::strategy_text(step.chain)
+     << "]\n";
   if (step.solved.empty())
     os << "  solved nothing of the start\n";
   else
@@ -75,13 +74,16 @@ void print_step(std::ostream& os, const teaching::Session& session, const teachi
        << "\n  why: " << step.failure << "\n";
     if (!step.blocking.empty())
       os << "  " << step.motion
-         << (step.chain.size() == 1 ? " may stop outside the goal at: "
-                                    : " may stop where the motions taught before do not reach the goal: ")
+         << (step.chain.nodes.size() == 1
+                 ? " may stop outside the goal at: "
+                 : " may stop where the motions taught before do not reach the goal: ")
          << pieces_text(session.task(), step.motion, step.blocking) << "\n";
     if (step.unchecked_reason_atoms > 0)
       os << "  (" << step.unchecked_reason_atoms << " more termination atoms not checked)\n";
   }
-  os << "  " << step.verifications << " verifications, " << step.seconds << " s\n";
+  os << "  " << step.verifications << " verifications"
+     << (step.dispatches ? ", " + std::to_string(step.dispatches) + " sensed dispatches tried" : "") << ", "
+     << step.seconds << " s\n";
 }
 
 std::string read_text(const std::string& path) {
@@ -201,7 +203,7 @@ std::optional<PreimageCheck> run_check(const TeachCli& cli, const Task& task,
 
 // What `cmt teach` did, for its output.
 struct TeachOutcome {
-  std::optional<std::vector<std::string>> strategy;
+  std::optional<Strategy> strategy;
   bool solved = false;
   std::string written_name;  // the taught strategy's name in the -o file, "" when none was written
   std::size_t steps_not_run = 0;
@@ -228,9 +230,7 @@ nlohmann::json outcome_json(const TeachCli& cli, const teaching::Session& sessio
 void print_outcome(const TeachCli& cli, const teaching::Session& session, const TeachOutcome& o) {
   const std::string& name = session.task().task.name;
   if (o.solved) {
-    std::cout << name << ": solved; taught strategy [";
-    for (std::size_t i = 0; i < o.strategy->size(); ++i) std::cout << (i ? ", " : "") << (*o.strategy)[i];
-    std::cout << "]"
+    std::cout << name << ": solved; taught strategy [" << teaching::strategy_text(*o.strategy) << "]"
               << (o.written_name.empty() ? "" : ", written to " + cli.out + " as '" + o.written_name + "'")
               << "\n";
   } else {

@@ -13,11 +13,46 @@ const json& member(const json& j, const char* key) { return json_member(j, key);
 
 double number(const json& j, const char* key) { return json_number(j, key); }
 
+std::string names(const json& list);
+
+// A strategy's sensing test in a few words: "sensed in 2 boxes", "force in 1 cone".
+std::string test_text(const json& when) {
+  std::string out;
+  for (const auto& [key, what] : {std::pair{"position", " box"}, std::pair{"force", " cone"}}) {
+    const json& sets = member(when, key);
+    if (!sets.is_array()) continue;
+    out += (out.empty() ? "" : " and ") + std::string(key) + " in " + std::to_string(sets.size()) + what +
+           (sets.size() == 1 ? "" : "es");
+  }
+  return out.empty() ? "?" : out;
+}
+
+// A branch item of a strategy list (docs/task-format.md "Conditional strategies"): "branch [position in 1
+// box: (right); else: ()]".
+std::string branch_text(const json& branches) {
+  if (!branches.is_array()) return "branch ?";
+  std::string out;
+  for (const json& b : branches) {
+    out += out.empty() ? "" : "; ";
+    out += member(b, "else").is_array() ? "else: " + names(member(b, "else"))
+                                        : test_text(member(b, "when")) + ": " + names(member(b, "then"));
+  }
+  return "branch [" + out + "]";
+}
+
+// A strategy list: motion names, and a branch item in words.
 std::string names(const json& list) {
   if (!list.is_array()) return "none";
   std::string out;
-  for (const json& n : list)
-    out += (out.empty() ? "" : ", ") + (n.is_string() ? n.get<std::string>() : n.dump());
+  for (const json& n : list) {
+    out += out.empty() ? "" : ", ";
+    if (n.is_string())
+      out += n.get<std::string>();
+    else if (n.is_object() && n.contains("branch"))
+      out += branch_text(n["branch"]);
+    else
+      out += n.dump();
+  }
   return "(" + out + ")";
 }
 

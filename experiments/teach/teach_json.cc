@@ -15,7 +15,7 @@ nlohmann::json cells_json(const LoadedTask& task, const std::vector<teaching::St
   for (const teaching::StartCell& c : cells)
     for (nlohmann::json& piece : pieces_json(task, ReachedSet::from_region(task, c.region).pieces())) {
       piece["cell"] = c.path;
-      if (!c.chain.empty()) piece["chain"] = c.chain;
+      if (!c.chain.nodes.empty()) piece["chain"] = strategy_json(c.chain, task.task.dimension);
       out.push_back(std::move(piece));
     }
   return out;
@@ -36,19 +36,97 @@ YAML::Node coordinates(const Vec3& v, int dimension) {
   return out;
 }
 
+// The sensing test of a branch in the task format: `position` boxes, `force` cones.
+template <typename Tree, typename Vector, typename Leaf, typename Sequence>
+Tree test_tree(const MotionTermination& when, int dimension, Vector vector, Leaf leaf, Sequence sequence) {
+  Tree test = leaf();
+  if (!when.position.empty()) {
+    Tree boxes = sequence(false);
+    for (const AxisBox& b : when.position) {
+      Tree box = leaf(), corners = leaf();
+      corners["min"] = vector(b.min, dimension);
+      corners["max"] = vector(b.max, dimension);
+      box["box"] = corners;
+      boxes.push_back(box);
+    }
+    test["position"] = boxes;
+  }
+  if (!when.force.empty()) {
+    Tree cones = sequence(false);
+    for (const ForceCone& f : when.force) {
+      Tree cone = leaf();
+      cone["direction"] = vector(f.direction, dimension);
+      cone["angle"] = f.angle;
+      cones.push_back(cone);
+    }
+    test["force"] = cones;
+  }
+  return test;
+}
+
+// The list of the strategy from node `node` on, in the task format (JSON or YAML); `sequence` makes an
+// empty list (a branch that stops is `[]`).
+template <typename Tree, typename Vector, typename Leaf, typename Sequence>
+Tree strategy_list(const Strategy& s, int node, int dimension, Vector vector, Leaf leaf, Sequence sequence) {
+  Tree list = sequence(true);
+  for (; node >= 0; node = s.nodes[static_cast<std::size_t>(node)].next) {
+    const StrategyNode& n = s.nodes[static_cast<std::size_t>(node)];
+    list.push_back(n.motion);
+    if (n.branches.empty()) continue;
+    Tree branches = sequence(false);
+    for (const StrategyBranch& b : n.branches) {
+      Tree branch = leaf();
+      Tree body = strategy_list<Tree>(s, b.first, dimension, vector, leaf, sequence);
+      if (b.otherwise) {
+        branch["else"] = body;
+      } else {
+        branch["when"] = test_tree<Tree>(b.when, dimension, vector, leaf, sequence);
+        branch["then"] = body;
+      }
+      branches.push_back(branch);
+    }
+    Tree item = leaf();
+    item["branch"] = branches;
+    Tree block = sequence(false);  // a list that holds a branch is written in block style
+    for (const auto& motion : list) block.push_back(motion);
+    block.push_back(item);
+    return block;
+  }
+  return list;
+}
+
+YAML::Node strategy_node(const Strategy& strategy, int dimension) {
+  const auto leaf = [] { return YAML::Node(YAML::NodeType::Map); };
+  const auto sequence = [](bool flow) {
+    YAML::Node list(YAML::NodeType::Sequence);
+    if (flow) list.SetStyle(YAML::EmitterStyle::Flow);
+    return list;
+  };
+  return strategy_list<YAML::Node>(strategy, strategy.nodes.empty() ? -1 : 0, dimension, coordinates, leaf,
+                                   sequence);
+}
+
 }  // namespace
+
+nlohmann::json strategy_json(const Strategy& strategy, int dimension) {
+  const auto leaf = [] { return nlohmann::json::object(); };
+  const auto sequence = [](bool) { return nlohmann::json::array(); };
+  return strategy_list<nlohmann::json>(strategy, strategy.nodes.empty() ? -1 : 0, dimension, point_json, leaf,
+                                       sequence);
+}
 
 nlohmann::json teach_step_json(const teaching::Session& session, const teaching::TeachStep& step) {
   const LoadedTask& task = session.task();
   const Motion* m = task.task.find_motion(step.motion);
   nlohmann::json out = {{"motion", step.motion},
                         {"commanded", motion_json(*m, task.task.dimension)},
-                        {"chain", step.chain},
+                        {"chain", strategy_json(step.chain, task.task.dimension)},
                         {"solved_regions", cells_json(task, step.solved)},
                         {"start_remaining", cells_json(task, step.remaining)},
                         {"solved_measure", step.solved_measure},
                         {"remaining_measure", step.remaining_measure},
                         {"verifications", step.verifications},
+                        {"dispatches", step.dispatches},
                         {"seconds", step.seconds}};
   out["stops_from_solved"] = pieces_json(task, step.stops_from_solved);
   if (!step.remaining.empty()) {
@@ -68,14 +146,15 @@ nlohmann::json teach_json(const teaching::Session& session, double seconds) {
           {"solved", session.solved() && strategy.has_value()},
           {"start_solved", session.solved()},
           {"steps", steps},
-          {"strategy", strategy ? nlohmann::json(*strategy) : nlohmann::json(nullptr)},
+          {"strategy",
+           strategy ? strategy_json(*strategy, session.task().task.dimension) : nlohmann::json(nullptr)},
           {"seconds", seconds}};
 }
 
 namespace {
 
 YAML::Node taught_task_node(const std::string& task_yaml, const teaching::Session& session,
-                            const std::vector<std::string>& strategy, const std::string& strategy_name) {
+                            const Strategy& strategy, const std::string& strategy_name) {
   YAML::Node root = YAML::Load(task_yaml);
   const int dimension = session.task().task.dimension;
   for (const Motion& m : session.inline_motions()) {
@@ -83,10 +162,7 @@ YAML::Node taught_task_node(const std::string& task_yaml, const teaching::Sessio
     motion[m.kind == Motion::Kind::kSpring ? "spring" : "damper"] = coordinates(m.target, dimension);
     root["motions"][m.name] = motion;
   }
-  YAML::Node list(YAML::NodeType::Sequence);
-  list.SetStyle(YAML::EmitterStyle::Flow);
-  for (const std::string& name : strategy) list.push_back(name);
-  root["strategies"][strategy_name] = list;
+  root["strategies"][strategy_name] = strategy_node(strategy, dimension);
   return root;
 }
 
@@ -100,7 +176,7 @@ std::string emit(const YAML::Node& root) {
 }  // namespace
 
 std::string taught_task_yaml(const std::string& task_yaml, const teaching::Session& session,
-                             const std::vector<std::string>& strategy, const std::string& strategy_name) {
+                             const Strategy& strategy, const std::string& strategy_name) {
   return emit(taught_task_node(task_yaml, session, strategy, strategy_name));
 }
 
@@ -119,8 +195,7 @@ void set_start(YAML::Node& root, const Region& start, int dimension) {
 }  // namespace
 
 std::string cell_task_yaml(const std::string& task_yaml, const teaching::Session& session,
-                           const std::vector<std::string>& strategy, const std::string& strategy_name,
-                           const Region& start) {
+                           const Strategy& strategy, const std::string& strategy_name, const Region& start) {
   YAML::Node root = taught_task_node(task_yaml, session, strategy, strategy_name);
   set_start(root, start, session.task().task.dimension);
   return emit(root);

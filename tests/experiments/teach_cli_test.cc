@@ -48,6 +48,39 @@ TEST(CmtTeach, BadSessionFilesExitTwoNamingFileKeyAndReason) {
   }
 }
 
+// Buckley Alg 5.1 on the ridge (models/tasks/ridge.yaml): the taught strategy senses after `down`; the JSON
+// and the written task hold it in the branch form, and the written task verifies reliable as it is read back.
+TEST(CmtTeach, RidgeSessionWritesASensedDispatchThatVerifies) {
+  const std::string task = std::string(CMT_SOURCE_DIR) + "/models/tasks/ridge.yaml";
+  const std::string session = std::string(CMT_SOURCE_DIR) + "/models/sessions/ridge_dispatch.yaml";
+  const std::string out = testing::TempDir() + "/ridge_taught.yaml";
+  const Result r = run("teach " + task + " --session " + session + " --json -o " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["solved"].get<bool>());
+  const auto& strategy = j["strategy"];
+  ASSERT_EQ(strategy.size(), 2u) << strategy;
+  EXPECT_EQ(strategy[0], "down");
+  const auto& branches = strategy[1]["branch"];
+  ASSERT_EQ(branches.size(), 2u) << strategy;
+  EXPECT_EQ(branches[0]["then"], nlohmann::json::array({"right"}));
+  ASSERT_EQ(branches[0]["when"]["position"].size(), 1u);
+  const auto& box = branches[0]["when"]["position"][0]["box"];
+  EXPECT_LT(box["min"][0].get<double>(), -1.9);  // the left floor, x down to -1 - 4 tan .2, less eps_s
+  EXPECT_NEAR(box["max"][0].get<double>(), -0.4, 1e-3);
+  EXPECT_EQ(branches[1]["else"], nlohmann::json::array());
+  EXPECT_EQ(j["steps"][1]["chain"], strategy);
+  EXPECT_GE(j["steps"][1]["dispatches"].get<int>(), 1);
+
+  const Result v = run("verify " + out + " --strategy taught --json");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const auto verified = nlohmann::json::parse(v.out);
+  EXPECT_TRUE(verified["reliable"].get<bool>());
+  // The hand-written chains of the task are not reliable.
+  for (const std::string s : {"down", "down_right"})
+    EXPECT_EQ(run("verify " + task + " --strategy " + s).status, 1) << s;
+}
+
 TEST(CmtTeach, CornerSessionPrintsTheStepsWritesTheTaughtTaskAndItVerifies) {
   const std::string session =
       session_file("corner_session", "steps:\n  - lift\n  - {damper: [1, 0, -0.3]}\n");

@@ -1,12 +1,14 @@
 // The teaching system's teaching loop (Buckley §5.1; verifier/teaching/README.md). The teacher proposes
 // commanded motions, the strategy's last motion first. Each motion m_k gets a pre-image: the start cells
-// from which m_k followed by the chain of an earlier step (C_{k-1} first, then C_{k-2}, ..., then m_k alone)
-// is verified reliable by the forward projection (verify.h). Step k's chain C_k is the candidate that solved
-// the most, or [m_k] ++ C_{k-1} when it solved nothing (its pre-image lies off the start, where later
-// motions may land). Solved cells leave the start; when the start is empty, the chain that solved it is the
-// taught strategy. A step starts from the unsolved cells with halves
-// that are both unsolved merged back: the forward projection of a cell can be looser than that of a larger
-// set (its fixpoint widening is not monotone), so a step first tries the largest unsolved cells.
+// from which m_k followed by the strategy of an earlier step (C_{k-1} first, then C_{k-2}, ..., then m_k
+// alone) is verified reliable by the forward projection (verify.h), and, when those leave cells unsolved, m_k
+// followed by a sensed dispatch between them (Buckley Alg 5.1: after m_k the robot senses which solved region
+// it is in; dispatches() below). Step k's strategy C_k is the candidate that solved the most, or
+// [m_k] ++ C_{k-1} when it solved nothing (its pre-image lies off the start, where later motions may land).
+// Solved cells leave the start; when the start is empty, the strategy that solved it is the taught strategy.
+// A step starts from the unsolved cells with halves that are both unsolved merged back: the forward
+// projection of a cell can be looser than that of a larger set (its fixpoint widening is not monotone), so a
+// step first tries the largest unsolved cells.
 //
 // Soundness: a cell counts as solved only when the verifier proves the chain reliable from the whole closed
 // cell, so a solved region is a sound under-approximation of the strong pre-image of the goal under the
@@ -21,6 +23,7 @@
 
 #include "models/loaded_task.h"
 #include "verifier/reached_set.h"
+#include "verifier/teaching/taught_strategy.h"
 #include "verifier/verify.h"
 
 namespace cmt::teaching {
@@ -32,20 +35,23 @@ struct TeachOptions {
   int refine_depth = 2;
   // Atoms of the motion's own termination set checked one by one when explaining an unsolved start.
   int max_reason_atoms = 12;
+  // The sensed dispatch (Alg 5.1) is built only when the motion's termination set from the unsolved cells
+  // meets at most this many atoms (each is checked against every earlier strategy); 0 turns it off.
+  int max_dispatch_atoms = 12;
 };
 
 // A start cell: its place in the tree of halvings ("" the start, then '0'/'1' per halving) and its region.
 struct StartCell {
   std::string path;
   Region region;
-  std::vector<std::string> chain;  // for a solved cell: the sequence verified reliable from it
+  Strategy chain;  // for a solved cell: the strategy verified reliable from it (no node otherwise)
   int depth() const { return static_cast<int>(path.size()); }
 };
 
 // One proposed motion and what it solved (a row of Buckley's table of solved regions, §5.1).
 struct TeachStep {
   std::string motion;
-  std::vector<std::string> chain;    // C_k: the candidate that solved the most, else [m_k] ++ C_{k-1}
+  Strategy chain;                    // C_k: the candidate that solved the most, else [m_k] ++ C_{k-1}
   std::vector<StartCell> solved;     // start cells the chain is verified reliable from
   std::vector<StartCell> remaining;  // start cells unsolved after this step
   double solved_measure = 0;         // length or area of the solved cells (0 for a point start)
@@ -61,9 +67,10 @@ struct TeachStep {
   // Buckley's Figs 5.4 and 5.7 draw the non-goal part of these: the weak sticking points to avoid.
   std::vector<ReachedPiece> stops_from_solved, stops_from_remaining;
   int verifications = 0;  // verifier runs: the motion once per cell tried, each chain's rest from its stops
+  int dispatches = 0;     // sensed-dispatch candidates tried (dispatches())
   double seconds = 0;
   // The taught strategy once this step leaves the start empty (Session::strategy).
-  std::optional<std::vector<std::string>> strategy;
+  std::optional<Strategy> strategy;
 };
 
 class Session {
@@ -86,15 +93,19 @@ class Session {
   std::shared_ptr<const LoadedTask> task_ptr() const { return task_; }
   // The taught strategy once solved: the chain that solved every cell, or, when cells were solved by
   // different chains, the latest of them that is verified reliable from the whole start; nullopt otherwise.
-  std::optional<std::vector<std::string>> strategy() const;
+  std::optional<Strategy> strategy() const;
   // The inline motions added so far (in step order).
   const std::vector<Motion>& inline_motions() const { return inline_motions_; }
 
  private:
   const TeachStep& run_step(const std::string& motion_name);
-  void refine(const std::vector<std::string>& chain, const StartCell& cell, int max_depth, TeachStep& step,
+  void refine(const Strategy& chain, const StartCell& cell, int max_depth, TeachStep& step,
               std::vector<StartCell>& unsolved);
-  std::vector<std::vector<std::string>> candidates(const std::string& motion_name) const;
+  std::vector<Strategy> candidates(const std::string& motion_name) const;
+  std::vector<Strategy> dispatches(const std::string& motion_name, const std::vector<StartCell>& cells,
+                                   TeachStep& step);
+  std::vector<StartCell> try_candidates(const std::vector<Strategy>& chains, std::vector<StartCell> cells,
+                                        bool halve, TeachStep& step, std::vector<double>& solved_by);
   std::vector<StartCell> merged(const std::vector<StartCell>& cells) const;
   VerifyResult verify_from(const Strategy& chain, const ReachedSet& start, TeachStep& step) const;
   // The proposed motion's simulation from a cell, shared by the chains a step tries on it.
@@ -104,9 +115,9 @@ class Session {
     ReachedSet termination;
   };
   const FirstMotion& first_motion(const std::string& motion, const StartCell& cell, TeachStep& step);
-  bool chain_reliable(const std::vector<std::string>& chain, const StartCell& cell, TeachStep& step);
-  void explain(const std::vector<std::string>& chain, TeachStep& step);
-  std::optional<std::vector<std::string>> taught_strategy() const;
+  bool chain_reliable(const Strategy& chain, const StartCell& cell, TeachStep& step);
+  void explain(const Strategy& chain, TeachStep& step);
+  std::optional<Strategy> taught_strategy() const;
 
   std::shared_ptr<const LoadedTask> original_;
   std::shared_ptr<const LoadedTask> task_;

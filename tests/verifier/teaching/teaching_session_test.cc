@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -50,6 +51,12 @@ motions:
   lift: {damper: [0, 0, 1]}
 )";
 
+// The motions of a decision-free strategy; a conditional one is a failure here.
+std::vector<std::string> sequence(const Strategy& s) {
+  EXPECT_FALSE(s.conditional()) << strategy_text(s);
+  return s.motions;
+}
+
 Motion damper(const Vec3& v) {
   Motion m;
   m.kind = Motion::Kind::kDamper;
@@ -71,11 +78,85 @@ TEST(TeachingSession, CornerLiftSolvesNothingAndNamesTheCeilingThenASlideSolvesT
   EXPECT_EQ(slide.motion, "taught_2");
   EXPECT_TRUE(session.solved());
   // [taught_2, lift] would leave the goal; the motion alone is the chain that solves the start.
-  EXPECT_EQ(slide.chain, (std::vector<std::string>{"taught_2"}));
+  EXPECT_EQ(sequence(slide.chain), (std::vector<std::string>{"taught_2"}));
   ASSERT_TRUE(session.strategy().has_value());
-  EXPECT_EQ(*session.strategy(), (std::vector<std::string>{"taught_2"}));
+  EXPECT_EQ(sequence(*session.strategy()), (std::vector<std::string>{"taught_2"}));
   EXPECT_NEAR(slide.solved_measure, 2, 1e-12);
-  EXPECT_TRUE(verify_motions(session.task(), *session.strategy(), rollout_like().verify).reliable);
+  EXPECT_TRUE(verify_strategy(session.task(), *session.strategy(), rollout_like().verify).reliable);
+}
+
+// Buckley's table of solved regions with a sensed dispatch (Alg 5.1). Floor z = 0, ceiling z = 4, a ridge
+// x in [0, .5] up to z = 1. Start: the ceiling segment x in [-1, 2]. Goal: the floor strip x in [-.5, 0] left
+// of the ridge with the ridge's lowest half inch, the ridge top, and the floor x in [.5, 3] right of it.
+// `down` lands on the floor or the ridge top within 4 tan(.2) = .81 of the start's x: in the goal except on
+// the floor x in [-1.81, -.5). `right` (tangent/normal .3 < mu = .5 against a wall) slides along the floor
+// into the ridge's left corner and sticks there; from the ceiling it sticks on the wall x = 4. So [down]
+// fails on the left floor, [down, right] fails wherever down lands right of the ridge (right slides on to x =
+// 4), and the robot must sense after down: on the left floor run right, elsewhere stop.
+constexpr const char* kRidge = R"(
+name: ridge
+units: in
+friction: 0.5
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.2, theta_f: 0.1}
+cspace:
+  - box: {min: [0, -2, 0], max: [0.5, 2, 1]}
+bounds: {min: [-4, -2, 0], max: [4, 2, 4]}
+start:
+  segment: [[-1, 0, 4], [2, 0, 4]]
+goal:
+  - polygon: [[-0.5, -2, 0], [0, -2, 0], [0, 2, 0], [-0.5, 2, 0]]
+  - polygon: [[0, -2, 0], [0, 2, 0], [0, 2, 0.5], [0, -2, 0.5]]
+  - polygon: [[0, -2, 1], [0.5, -2, 1], [0.5, 2, 1], [0, 2, 1]]
+  - polygon: [[0.5, -2, 0], [3, -2, 0], [3, 2, 0], [0.5, 2, 0]]
+motions:
+  right: {damper: [1, 0, -0.3]}
+  down: {damper: [0, 0, -1]}
+)";
+
+TEST(TeachingSession, RidgeNeedsASensedDispatchAfterDown) {
+  Session session(load_task_from_string(kRidge, "ridge"), rollout_like());
+  const TeachStep& right = session.propose("right");
+  EXPECT_TRUE(right.solved.empty());
+  EXPECT_EQ(right.dispatches, 0);  // nothing taught before: no dispatch to build
+  for (const ReachedPiece& p : right.blocking)
+    for (const Vec3& q : p.polygon) EXPECT_DOUBLE_EQ(q.x(), 4);  // only the wall x = 4
+
+  const TeachStep& down = session.propose("down");
+  ASSERT_TRUE(session.solved());
+  ASSERT_TRUE(session.strategy().has_value());
+  const Strategy taught = *session.strategy();
+  EXPECT_TRUE(same_strategy(taught, down.chain));
+  EXPECT_NEAR(down.solved_measure, 3, 1e-12);  // the whole start, by the dispatch
+  EXPECT_GE(down.dispatches, 1);
+  // down, then: sensed on the left floor -> right; else stop.
+  ASSERT_EQ(taught.nodes.size(), 2u);
+  EXPECT_EQ(taught.nodes[0].motion, "down");
+  ASSERT_EQ(taught.nodes[0].branches.size(), 2u);
+  const StrategyBranch& sensed = taught.nodes[0].branches[0];
+  const StrategyBranch& otherwise = taught.nodes[0].branches[1];
+  EXPECT_FALSE(sensed.otherwise);
+  EXPECT_TRUE(otherwise.otherwise);
+  EXPECT_EQ(otherwise.first, -1);  // stop
+  ASSERT_EQ(sensed.first, 1);
+  EXPECT_EQ(taught.nodes[1].motion, "right");
+  // The test's boxes hold every floor point left of the strip, grown by eps_s, and stay left of the ridge.
+  ASSERT_FALSE(sensed.when.position.empty());
+  double min_x = 1e9, max_x = -1e9;
+  for (const AxisBox& b : sensed.when.position) {
+    min_x = std::min(min_x, b.min.x());
+    max_x = std::max(max_x, b.max.x());
+    EXPECT_LE(b.min.z(), -0.1);
+    EXPECT_GE(b.max.z(), 0.1);
+    EXPECT_LT(b.max.z(), 0.5);  // the ridge top (z = 1) cannot read inside
+  }
+  EXPECT_LE(min_x, -1 - 4 * std::tan(0.2) - 0.1);
+  EXPECT_GE(max_x, -0.5 + 0.1);
+  EXPECT_LT(max_x, -0.5 + 0.1 + 1e-3);
+
+  const VerifyOptions o = rollout_like().verify;
+  EXPECT_TRUE(verify_strategy(session.task(), taught, o).reliable);
+  EXPECT_FALSE(verify_motions(session.task(), {"down"}, o).reliable);
+  EXPECT_FALSE(verify_motions(session.task(), {"down", "right"}, o).reliable);
 }
 
 TEST(TeachingSession, UndoRemovesTheStepAndItsInlineMotion) {
@@ -106,11 +187,11 @@ TEST(TeachingSession, HoleSessionReproducesBuckleySection52) {
     for (const Vec3& q : p.polygon) EXPECT_NEAR(q.z(), 0, 1e-9);  // the top surface, around the hole
   const TeachStep& p2 = session.propose("p2");
   EXPECT_TRUE(session.solved());
-  EXPECT_EQ(p2.chain, (std::vector<std::string>{"p2", "p1"}));
+  EXPECT_EQ(sequence(p2.chain), (std::vector<std::string>{"p2", "p1"}));
   // p1's unsolved quarters merge back into the start: p2 from it, then p1 from where p2 stops.
   EXPECT_EQ(p2.verifications, 2);
   ASSERT_TRUE(session.strategy().has_value());
-  EXPECT_EQ(*session.strategy(), (std::vector<std::string>{"p2", "p1"}));
+  EXPECT_EQ(sequence(*session.strategy()), (std::vector<std::string>{"p2", "p1"}));
 }
 
 // "It is important not to make p2 too deep, or else the robot may stick on the way to the hole" (L1435): the
@@ -149,7 +230,7 @@ TEST(TeachingSession, HoleSessionWithTheSection52FrictionAndForceError) {
   EXPECT_TRUE(session.propose("p1").solved.empty());
   session.propose("p2");
   ASSERT_TRUE(session.strategy().has_value());
-  EXPECT_EQ(*session.strategy(), (std::vector<std::string>{"p2", "p1"}));
+  EXPECT_EQ(sequence(*session.strategy()), (std::vector<std::string>{"p2", "p1"}));
 }
 
 }  // namespace
