@@ -114,6 +114,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     std::uint64_t seed = 1;
     bool ends = false, edr = false;
     int per_world = ValidateEdrOptions{}.per_world, resolution = ValidateEdrOptions{}.resolution;
+    int refine_depth = ValidateEdrOptions{}.refine_depth;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("validate", "Compare the verifier's prediction with MuJoCo rollouts");
@@ -148,6 +149,11 @@ void add_validate_command(CLI::App& app, CommandState& state) {
                   "with --edr: the verifier's slices, evenly spaced values per model parameter (cmt edr)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  cmd->add_option("--refine", o->refine_depth,
+                  "with --edr: bisections between adjacent slices (cmt edr --refine, docs/edr.md \"Between "
+                  "slices\"; 0: none)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
   cmd->add_flag("--json", state.json, "print one JSON object on stdout");
   cmd->callback([o, &state] {
     check_rollout_sampling_options(o->n, o->threads);
@@ -158,8 +164,18 @@ void add_validate_command(CLI::App& app, CommandState& state) {
         throw CLI::ValidationError("--controller", "--edr runs the impedance form (the verifier's model)");
       if (o->sticking_trials > 0 || o->ends)
         throw CLI::ValidationError("--edr", "--sticking-trials and --ends are for a task's nominal world");
-      state.exit_status = validate_edr({o->task, o->strategy, o->n, o->per_world, o->resolution, threads,
-                                        o->seed, *parse_sample_mode(o->mode), state.json});
+      ValidateEdrOptions edr;
+      edr.task = o->task;
+      edr.strategy = o->strategy;
+      edr.rollouts = o->n;
+      edr.per_world = o->per_world;
+      edr.resolution = o->resolution;
+      edr.refine_depth = o->refine_depth;
+      edr.threads = threads;
+      edr.seed = o->seed;
+      edr.mode = *parse_sample_mode(o->mode);
+      edr.json = state.json;
+      state.exit_status = validate_edr(edr);
       return;
     }
     if (o->sticking_trials < 0)

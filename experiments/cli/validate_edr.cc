@@ -41,6 +41,7 @@ int validate_edr(const ValidateEdrOptions& options) {
   request.file = options.task;
   request.strategy = options.strategy;
   request.resolution = options.resolution;
+  request.refine_depth = options.refine_depth;
   request.require_signal = true;
   const EdrResult verdict = edr_verdict(*task, request);
   EdrCheckOptions check_options;

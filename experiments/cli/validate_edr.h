@@ -1,4 +1,5 @@
-// `cmt validate TASK --strategy NAME --edr -n N --seed S [--per-world K] [--resolution R] [--mode M]
+// `cmt validate TASK --strategy NAME --edr -n N --seed S [--per-world K] [--resolution R] [--refine D]
+// [--mode M]
 // [--threads T] --json` (docs/contracts.md): an EDR strategy against MuJoCo rollouts in worlds drawn
 // uniformly over the model parameters' intervals (experiments/edr/edr_check.h, docs/edr.md "Physics check").
 // The strategy's last motion must carry the EDR termination predicate (`edr: true`).
@@ -7,12 +8,14 @@
 #include <string>
 
 #include "controllers/error_model.h"
+#include "experiments/edr/edr_verdict.h"
 
 namespace cmt {
 
 struct ValidateEdrOptions {
   std::string task, strategy;
   int rollouts = 1000, per_world = 20, resolution = 5, threads = 1;
+  int refine_depth = EdrVerdictRequest{}.refine_depth;  // slicing-gap refinement (cmt edr --refine)
   std::uint64_t seed = 1;
   SampleMode mode = SampleMode::kUniform;
   bool json = false;

@@ -171,6 +171,23 @@ TEST(CmtValidateEdr, StepOffsetOutcomesAreAllowedAndReplay) {
   }
 }
 
+// `--refine D` reaches the verdict: the slices refined between (docs/edr.md "Between slices"), none with 0.
+TEST(CmtValidateEdr, RefineSetsTheVerdictsRefinementDepth) {
+  std::vector<std::size_t> slices;
+  for (const int depth : {0, 2}) {
+    const Result v =
+        run("validate " + task("step_offset") + " --strategy edr --edr -n 20 --per-world 20 --seed 7 " +
+            "--refine " + std::to_string(depth) + " --json");
+    ASSERT_EQ(v.status, 0) << v.out;
+    const auto j = nlohmann::json::parse(v.out);
+    EXPECT_EQ(j["verdict"]["refine_depth"].get<int>(), depth);
+    EXPECT_EQ(j["outcomes"]["false_success"].get<int>() + j["outcomes"]["false_failure"].get<int>(), 0);
+    slices.push_back(j["verdict"]["slices"].size());
+  }
+  EXPECT_GT(slices[1], slices[0]);
+  EXPECT_EQ(run("validate " + task("step_offset") + " --strategy edr --edr -n 5 --refine 11").status, 2);
+}
+
 TEST(CmtRolloutWorld, BadWorldsExitTwo) {
   const std::string base = "rollout " + task("step_offset") + " --strategy edr -n 1 --json";
   EXPECT_EQ(run(base + " --world alpha=0.5").status, 0);
