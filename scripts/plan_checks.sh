@@ -21,4 +21,5 @@ plan() {  # plan TASK [cmt plan options...]
 
 plan cube --check 100 --threads 2 --seed 1  # Buckley Sec 6.3.1: one motion that sticks on the cube bottom
 plan hole --check 100 --threads 2 --seed 1  # Sec 6.3.3: stick on the far wall, then on the bottom
+plan cube_sensing --termination position --check 100 --threads 2 --seed 1  # Sec 6.3.2: stop by sensed position
 exit 0
