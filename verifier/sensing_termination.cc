@@ -74,6 +74,12 @@ ReachedSet without_strongly_consistent(const LoadedTask& task, const AtomCones& 
     AxisBox inner = b;
     inner.min.array() += shrink;
     inner.max.array() -= shrink;
+    if (task.task.dimension == 2) {
+      // Planar: the sensing error lies in the x-z plane and the robot stays in the clip slab, which a planar
+      // box spans in y (the loader's reading), so every reading passes the box's y extent.
+      inner.min.y() = b.min.y() - c.scale();
+      inner.max.y() = b.max.y() + c.scale();
+    }
     if ((inner.min.array() > inner.max.array()).any()) continue;  // the ball fits nowhere in this box
     sure = sure.without_box(inner);
   }

@@ -1,6 +1,7 @@
 // The report's "Teaching sessions" section (report_table.h teaching_table; docs/teaching.md "In the main
 // job"): one row per `cmt teach --json` or `cmt backproject --json` object given to `cmt report --teach`.
 #include <sstream>
+#include <tuple>
 
 #include "experiments/report/report_table.h"
 
@@ -15,14 +16,15 @@ double number(const json& j, const char* key) { return json_number(j, key); }
 
 std::string names(const json& list);
 
-// A strategy's sensing test in a few words: "sensed in 2 boxes", "force in 1 cone".
+// A strategy's sensing test in a few words: "position in 2 boxes", "force in 1 cone".
 std::string test_text(const json& when) {
   std::string out;
-  for (const auto& [key, what] : {std::pair{"position", " box"}, std::pair{"force", " cone"}}) {
+  for (const auto& [key, one, many] :
+       {std::tuple{"position", " box", " boxes"}, std::tuple{"force", " cone", " cones"}}) {
     const json& sets = member(when, key);
     if (!sets.is_array()) continue;
-    out += (out.empty() ? "" : " and ") + std::string(key) + " in " + std::to_string(sets.size()) + what +
-           (sets.size() == 1 ? "" : "es");
+    out += (out.empty() ? "" : " and ") + std::string(key) + " in " + std::to_string(sets.size()) +
+           (sets.size() == 1 ? one : many);
   }
   return out.empty() ? "?" : out;
 }

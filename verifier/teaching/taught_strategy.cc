@@ -89,6 +89,7 @@ Strategy dispatch(const std::string& motion, const std::vector<DispatchBranch>& 
     StrategyBranch branch;
     branch.otherwise = b + 1 == branches.size();
     if (!branch.otherwise) branch.when = branches[b].when;
+    branch.key = branch.otherwise ? "the dispatch's else" : "the dispatch's test " + std::to_string(b);
     out.nodes[0].branches.push_back(branch);
   }
   for (std::size_t b = 0; b < branches.size(); ++b) {

@@ -118,6 +118,7 @@ TEST(TeachingSession, RidgeNeedsASensedDispatchAfterDown) {
   const TeachStep& right = session.propose("right");
   EXPECT_TRUE(right.solved.empty());
   EXPECT_EQ(right.dispatches, 0);  // nothing taught before: no dispatch to build
+  ASSERT_FALSE(right.blocking.empty());
   for (const ReachedPiece& p : right.blocking)
     for (const Vec3& q : p.polygon) EXPECT_DOUBLE_EQ(q.x(), 4);  // only the wall x = 4
 
