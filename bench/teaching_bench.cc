@@ -2,8 +2,11 @@
 // hole teaching session of Buckley §5.2 (docs/teaching.md). Baseline BM_VerifyHoleP1: `verify` of p1 alone
 // from the hole's start (one forward projection). BM_TeachHoleP1: the teaching session's step 1 (p1 solves
 // nothing: every halving of the start is tried, 9 verifications). BM_TeachHoleP2: step 2 after step 1 (one
-// verification of (p2, p1) from the merged start). The options are `cmt teach`'s except contact lift and
-// servo coast (0).
+// verification of (p2, p1) from the merged start). The ridge's sensed dispatch (Alg 5.1,
+// models/tasks/ridge.yaml) against its own baseline BM_VerifyRidgeDown (`verify` of down from the ridge's
+// start): BM_TeachRidgeDown, step 2 after `right` (the chains, the dispatch's simulation and continuation
+// checks, the dispatch verified from the start). The options are `cmt teach`'s except contact lift and servo
+// coast (0).
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -48,9 +51,30 @@ void BM_TeachHoleP2(benchmark::State& state) {
   }
 }
 
+std::shared_ptr<const cmt::LoadedTask> ridge() {
+  static const auto task = cmt::load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/ridge.yaml");
+  return task;
+}
+
+void BM_VerifyRidgeDown(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(cmt::verify_motions(*ridge(), {"down"}, options().verify));
+}
+
+void BM_TeachRidgeDown(benchmark::State& state) {
+  for (auto _ : state) {
+    state.PauseTiming();
+    cmt::teaching::Session session(ridge(), options());
+    session.propose("right");
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(session.propose("down"));
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_VerifyHoleP1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_TeachHoleP1)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_TeachHoleP2)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_VerifyRidgeDown)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_TeachRidgeDown)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_MAIN();
