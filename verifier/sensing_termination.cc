@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/task_loader.h"
+
 namespace cmt {
 
 ReachedSet sensing_termination(const LoadedTask& task, const AtomCones& cones, const Motion& m,
@@ -76,9 +78,10 @@ ReachedSet without_strongly_consistent(const LoadedTask& task, const AtomCones& 
     inner.max.array() -= shrink;
     if (task.task.dimension == 2) {
       // Planar: the sensing error lies in the x-z plane and the robot stays in the clip slab, which a planar
-      // box spans in y (the loader's reading), so every reading passes the box's y extent.
-      inner.min.y() = b.min.y() - c.scale();
-      inner.max.y() = b.max.y() + c.scale();
+      // box spans in y (the loader's reading), so every reading passes in y: the box takes twice the slab,
+      // which holds the whole C-space (its bounds span the slab) with room for the grid's rounding.
+      inner.min.y() = -2 * kPlanarClipHalfDepth;
+      inner.max.y() = 2 * kPlanarClipHalfDepth;
     }
     if ((inner.min.array() > inner.max.array()).any()) continue;  // the ball fits nowhere in this box
     sure = sure.without_box(inner);

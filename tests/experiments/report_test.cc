@@ -1156,6 +1156,31 @@ TEST(Report, TeachingSessionsSectionListsEachSession) {
   EXPECT_NE(html.find("<a href=\"../teach/hole_view/index.html\">3-D view</a>"), std::string::npos) << html;
 }
 
+// A taught strategy with a sensed dispatch (docs/task-format.md branch form) is shown in words, not as JSON.
+TEST(Report, TeachingSessionsSectionShowsASensedDispatchInWords) {
+  const json box = {{"box", {{"min", {-2.0, -1.0, -0.1}}, {"max", {-0.4, 1.0, 0.1}}}}};
+  const json dispatch = {
+      "down",
+      {{"branch",
+        {{{"when", {{"position", {box, box}}, {"force", {{{"direction", {0, 0, 1}}, {"angle", 0.5}}}}}},
+          {"then", {"right"}}},
+         {{"else", json::array()}}}}}};
+  const json session = {
+      {"task", "ridge"},
+      {"solved", true},
+      {"strategy", dispatch},
+      {"seconds", 1.0},
+      {"steps",
+       {{{"motion", "down"}, {"chain", dispatch}, {"solved_measure", 3.0}, {"remaining_measure", 0.0}}}}};
+  cmt::report::ResultsDb db;
+  cmt::report::ReportContent content = cmt::report::build_report_content(db, {});
+  content.teaching = cmt::report::teaching_table({{"ridge_dispatch.json", session, ""}});
+  const std::string md = cmt::report::render_markdown(content);
+  const std::string text = "(down, branch [position in 2 boxes and force in 1 cone: (right); else: ()])";
+  EXPECT_NE(md.find("| " + text + " | down " + text + ": solved 3, left 0 |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("\"box\""), std::string::npos) << md;
+}
+
 TEST(Report, PlannedStrategiesSectionListsEachPlan) {
   const json found = {
       {"task", "cube"},

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "models/task_loader.h"
 #include "tests/verifier/sensing_tasks.h"
 #include "tests/verifier/test_geometry.h"
 #include "verifier/atom_cone.h"
@@ -106,6 +107,25 @@ TEST(StronglyConsistent, PositionShrinksTheBoxByEpsS) {
   MotionTermination thin;
   thin.position.push_back({Vec3(0, -1, -1), Vec3(0.15, 1, 1)});
   EXPECT_NEAR(without_strongly_consistent(*r.task, cones, thin, r.all).area(), r.all.area(), 1e-9);
+}
+
+// A planar task (tests/experiments/data/ridge_planar.yaml: the ridge in x-z, eps_s = .1): the sensing error
+// lies in the x-z plane, so a box read from the file (spanning the clip slab in y) is surely passed across
+// the whole slab. The right floor x in [.5, 3] (area 2.5 over the slab's depth 1) inside x in [0, 4], |z| <=
+// 1 shrunk by eps_s goes whole; shrinking y as well would keep two strips of 2.5 x .1.
+TEST(StronglyConsistent, PlanarBoxesAreSurelyPassedAcrossTheSlab) {
+  const auto task = load_task(std::string(CMT_SOURCE_DIR) + "/tests/experiments/data/ridge_planar.yaml");
+  const AtomCones cones(task->cspace);
+  const Region right_floor = task->task.goal.back();
+  const ReachedSet floor = ReachedSet::from_region(*task, right_floor);
+  ASSERT_NEAR(floor.area(), 2.5, kAreaTolerance);
+  MotionTermination test;
+  test.position.push_back({Vec3(0, -kPlanarClipHalfDepth, -1), Vec3(4, kPlanarClipHalfDepth, 1)});
+  EXPECT_NEAR(without_strongly_consistent(*task, cones, test, floor).area(), 0, kAreaTolerance);
+  // x in [1, 2] only: the floor keeps x in [.5, 1.1] and [1.9, 3], 0.6 + 1.1, across the slab.
+  MotionTermination part;
+  part.position.push_back({Vec3(1, -kPlanarClipHalfDepth, -1), Vec3(2, kPlanarClipHalfDepth, 1)});
+  EXPECT_NEAR(without_strongly_consistent(*task, cones, part, floor).area(), 1.7, kAreaTolerance);
 }
 
 TEST(StronglyConsistent, ForceTakesOnlyFacesWhoseWidenedConeFits) {

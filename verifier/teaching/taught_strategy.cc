@@ -40,6 +40,19 @@ bool same_termination(const MotionTermination& a, const MotionTermination& b) {
   return true;
 }
 
+// "position in 1 box", "position in 2 boxes and force in 1 cone".
+std::string test_text(const MotionTermination& when) {
+  const auto count = [](std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + (n == 1 ? one : many);
+  };
+  std::string out;
+  if (!when.position.empty()) out = "position in " + count(when.position.size(), " box", " boxes");
+  if (!when.force.empty())
+    out +=
+        (out.empty() ? "" : " and ") + std::string("force in ") + count(when.force.size(), " cone", " cones");
+  return out;
+}
+
 void write_list(const Strategy& s, int node, std::ostream& os) {
   for (bool first = true; node >= 0; first = false) {
     const StrategyNode& n = s.nodes[static_cast<std::size_t>(node)];
@@ -52,8 +65,7 @@ void write_list(const Strategy& s, int node, std::ostream& os) {
         if (br.otherwise)
           os << "else: [";
         else
-          os << "when " << br.when.position.size() << " boxes" << (br.when.force.empty() ? "" : " and forces")
-             << ": [";
+          os << "when " << test_text(br.when) << ": [";
         write_list(s, br.first, os);
         os << "]";
       }

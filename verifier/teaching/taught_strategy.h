@@ -32,7 +32,7 @@ Strategy dispatch(const std::string& motion, const std::vector<DispatchBranch>& 
 // The same motions, links and tests (names aside).
 bool same_strategy(const Strategy& a, const Strategy& b);
 
-// A one-line text: "p2, p1"; a dispatch as "down, branch {when 2 boxes: [lift]; else: []}".
+// A one-line text: "p2, p1"; a dispatch as "down, branch {when position in 2 boxes: [lift]; else: []}".
 std::string strategy_text(const Strategy& strategy);
 
 }  // namespace cmt::teaching

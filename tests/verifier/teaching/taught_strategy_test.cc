@@ -55,7 +55,7 @@ TEST(TaughtStrategy, TreesMatchTheLoadersReadingOfTheSameStrategy) {
   EXPECT_FALSE(same_strategy(tree, inner));
   EXPECT_TRUE(tree.conditional());
   EXPECT_EQ(tree.motions, (std::vector<std::string>{"a", "b", "c", "a"}));
-  EXPECT_EQ(strategy_text(tree), "a, b, branch {when 1 boxes: [c, a]; else: []}");
+  EXPECT_EQ(strategy_text(tree), "a, b, branch {when position in 1 box: [c, a]; else: []}");
 
   MotionTermination wider = left_box();
   wider.position[0].max.x() = 0.5;

@@ -85,36 +85,20 @@ TEST(TeachingSession, CornerLiftSolvesNothingAndNamesTheCeilingThenASlideSolvesT
   EXPECT_TRUE(verify_strategy(session.task(), *session.strategy(), rollout_like().verify).reliable);
 }
 
-// Buckley's table of solved regions with a sensed dispatch (Alg 5.1). Floor z = 0, ceiling z = 4, a ridge
-// x in [0, .5] up to z = 1. Start: the ceiling segment x in [-1, 2]. Goal: the floor strip x in [-.5, 0] left
-// of the ridge with the ridge's lowest half inch, the ridge top, and the floor x in [.5, 3] right of it.
-// `down` lands on the floor or the ridge top within 4 tan(.2) = .81 of the start's x: in the goal except on
-// the floor x in [-1.81, -.5). `right` (tangent/normal .3 < mu = .5 against a wall) slides along the floor
-// into the ridge's left corner and sticks there; from the ceiling it sticks on the wall x = 4. So [down]
-// fails on the left floor, [down, right] fails wherever down lands right of the ridge (right slides on to x =
-// 4), and the robot must sense after down: on the left floor run right, elsewhere stop.
-constexpr const char* kRidge = R"(
-name: ridge
-units: in
-friction: 0.5
-uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.2, theta_f: 0.1}
-cspace:
-  - box: {min: [0, -2, 0], max: [0.5, 2, 1]}
-bounds: {min: [-4, -2, 0], max: [4, 2, 4]}
-start:
-  segment: [[-1, 0, 4], [2, 0, 4]]
-goal:
-  - polygon: [[-0.5, -2, 0], [0, -2, 0], [0, 2, 0], [-0.5, 2, 0]]
-  - polygon: [[0, -2, 0], [0, 2, 0], [0, 2, 0.5], [0, -2, 0.5]]
-  - polygon: [[0, -2, 1], [0.5, -2, 1], [0.5, 2, 1], [0, 2, 1]]
-  - polygon: [[0.5, -2, 0], [3, -2, 0], [3, 2, 0], [0.5, 2, 0]]
-motions:
-  right: {damper: [1, 0, -0.3]}
-  down: {damper: [0, 0, -1]}
-)";
+// Buckley's table of solved regions with a sensed dispatch (Alg 5.1) on models/tasks/ridge.yaml: floor z = 0,
+// ceiling z = 4, a ridge x in [0, .5] up to z = 1. Start: the ceiling segment x in [-1, 2]. Goal: the floor
+// strip x in [-.5, 0] left of the ridge with the ridge's lowest half inch, the ridge top, and the floor x in
+// [.5, 3] right of it. `down` lands on the floor or the ridge top within 4 tan(.2) = .81 of the start's x: in
+// the goal except on the floor x in [-1.81, -.5). `right` slides along the floor into the ridge's left corner
+// and rests there; from the ceiling it flies to the wall x = 4. So [down] fails on the left floor, [down,
+// right] fails wherever down lands right of the ridge (right slides on to x = 4), and the robot must sense
+// after down: on the left floor run right, elsewhere stop.
+std::shared_ptr<const LoadedTask> ridge() {
+  return load_task(std::string(CMT_SOURCE_DIR) + "/models/tasks/ridge.yaml");
+}
 
 TEST(TeachingSession, RidgeNeedsASensedDispatchAfterDown) {
-  Session session(load_task_from_string(kRidge, "ridge"), rollout_like());
+  Session session(ridge(), rollout_like());
   const TeachStep& right = session.propose("right");
   EXPECT_TRUE(right.solved.empty());
   EXPECT_EQ(right.dispatches, 0);  // nothing taught before: no dispatch to build
