@@ -19,6 +19,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   struct Options {
     CampaignOptions campaign;
     std::string out = "out/soundness-campaign";
+    std::string generator = "default";
     bool no_minimize = false;
     int threads = 0;
     int false_alarm_budget = 0;
@@ -34,6 +35,11 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--seed", o->campaign.seed, "campaign seed (task i is the same for the same seed)")
       ->capture_default_str();
   cmd->add_option("-n,--rollouts", o->campaign.rollouts, "extreme-mode rollouts per task")
+      ->capture_default_str();
+  cmd->add_option("--generator", o->generator,
+                  "default, or wide: friction up to 1.5, boxes lifted off the floor, starts near a rim "
+                  "(docs/validation.md \"Generator\"; a campaign resumes only with its own generator)")
+      ->check(CLI::IsMember({"default", "wide"}))
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "rollout threads (0: all cores; results do not depend on it)");
   cmd->add_option("--verifier-budget", o->campaign.verifier_budget,
@@ -58,6 +64,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     o->campaign.threads =
         o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     o->campaign.out = o->out;
+    o->campaign.generator = o->generator == "wide" ? CampaignGenerator::kWide : CampaignGenerator::kDefault;
     o->campaign.minimize = !o->no_minimize;
     if (o->false_alarm_budget > 0)
       o->campaign.false_alarm_check = [budget = o->false_alarm_budget, threads = o->campaign.threads](
@@ -98,6 +105,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
                               {"false_alarms", s.false_alarms},
                               {"failures_found", s.failures_found},
                               {"seed", o->campaign.seed},
+                              {"generator", o->generator},
                               {"rollouts", o->campaign.rollouts},
                               {"soundness_bugs", bugs},
                               {"results", (o->campaign.out / "results.jsonl").string()}};

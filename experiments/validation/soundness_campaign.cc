@@ -21,6 +21,14 @@ namespace {
 // Generation ranges (docs/validation.md "Random-task soundness campaign"), lengths in physical inches before
 // the task's scale and unit factors.
 constexpr double kMinFriction = 0.1, kMaxFriction = 0.8;
+// The wide generator (CampaignGenerator::kWide): friction up to kWideMaxFriction; each box lifted off the
+// floor with probability kLiftedBoxChance (its bottom at 15-40 % of the room's height, 10-30 % tall); a start
+// near a rim with probability kNearRimChance (the start region's edge within kRimBand room units of the
+// face's rim).
+constexpr double kWideMaxFriction = 1.5;
+constexpr double kLiftedBoxChance = 0.3;
+constexpr double kNearRimChance = 0.5;
+constexpr double kRimBand = 0.05;
 constexpr double kMinThetaV = 0.02, kMaxThetaV = 0.3;
 constexpr double kMinEps = 0.01, kMaxEps = 0.2;
 constexpr double kFarOffsetMin = 50, kFarOffsetMax = 3000;
@@ -93,7 +101,20 @@ std::vector<Vec3> top_rectangle(const Vec3& lo, const Vec3& hi, double z) {
   return {Vec3(lo.x(), lo.y(), z), Vec3(hi.x(), lo.y(), z), Vec3(hi.x(), hi.y(), z), Vec3(lo.x(), hi.y(), z)};
 }
 
-Scene draw_scene(Rng& rng, std::string* description) {
+// A start centre on the face [flo, fhi] at height z, at least r inside it; with `near_rim`, within kRimBand *
+// L of that limit on one side of one axis.
+Vec3 start_centre(Rng& rng, const Vec3& flo, const Vec3& fhi, double z, double r, double L, bool near_rim) {
+  Vec3 c(uniform(rng, flo.x() + r, fhi.x() - r), uniform(rng, flo.y() + r, fhi.y() - r), z);
+  if (near_rim) {
+    const int k = uniform_index(rng, 2);
+    const double band = std::min(kRimBand * L, std::max(0.0, fhi[k] - flo[k] - 2 * r));
+    c[k] = uniform01(rng) < 0.5 ? flo[k] + r + uniform(rng, 0, band) : fhi[k] - r - uniform(rng, 0, band);
+  }
+  return c;
+}
+
+Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description) {
+  const bool wide = generator == CampaignGenerator::kWide;
   Scene s;
   const int unit = uniform_index(rng, 3);
   s.units = unit == 0 ? "in" : unit == 1 ? "mm" : "m";
@@ -111,12 +132,13 @@ Scene draw_scene(Rng& rng, std::string* description) {
   const Vec3 extent(uniform(rng, 4, 10) * L, uniform(rng, 4, 10) * L, uniform(rng, 3, 6) * L);
   s.lo = offset;
   s.hi = offset + extent;
-  s.mu = uniform(rng, kMinFriction, kMaxFriction);
+  s.mu = uniform(rng, kMinFriction, wide ? kWideMaxFriction : kMaxFriction);
   s.u.eps_s = uniform(rng, kMinEps, kMaxEps) * L;
   s.u.eps_p = uniform(rng, kMinEps, kMaxEps) * L;
   s.u.theta_v = uniform(rng, kMinThetaV, kMaxThetaV);
   s.u.theta_f = 0.05;
   const int nboxes = uniform_index(rng, 4);
+  int lifted = 0;
   for (int b = 0; b < nboxes; ++b) {
     AxisBox box;
     for (int k = 0; k < 2; ++k) {
@@ -129,6 +151,11 @@ Scene draw_scene(Rng& rng, std::string* description) {
     }
     box.min.z() = s.lo.z();
     box.max.z() = s.lo.z() + uniform(rng, 0.1, 0.5) * extent.z();
+    if (wide && uniform01(rng) < kLiftedBoxChance) {
+      box.min.z() = s.lo.z() + uniform(rng, 0.15, 0.4) * extent.z();
+      box.max.z() = box.min.z() + uniform(rng, 0.1, 0.3) * extent.z();
+      ++lifted;
+    }
     s.boxes.push_back(box);
   }
   // The start face: the floor or a box top; a point, a short segment or a small square on it.
@@ -137,7 +164,8 @@ Scene draw_scene(Rng& rng, std::string* description) {
   const Vec3 fhi = face == 0 ? s.hi : s.boxes[face - 1].max;
   const double z = face == 0 ? s.lo.z() : fhi.z();
   const double r = uniform(rng, 0.02, 0.4) * L;
-  const Vec3 c(uniform(rng, flo.x() + r, fhi.x() - r), uniform(rng, flo.y() + r, fhi.y() - r), z);
+  const bool near_rim = wide && uniform01(rng) < kNearRimChance;
+  const Vec3 c = start_centre(rng, flo, fhi, z, r, L, near_rim);
   const int kind = uniform_index(rng, 5);
   if (kind <= 2) {
     s.start_kind = "point";
@@ -169,6 +197,7 @@ Scene draw_scene(Rng& rng, std::string* description) {
     << (far ? "far" : "near") << ", start " << s.start_kind << " on " << (face == 0 ? "floor" : "box top")
     << ", mu " << num(std::round(s.mu * 100) / 100) << ", theta_v "
     << num(std::round(s.u.theta_v * 100) / 100);
+  if (wide) d << ", wide: " << lifted << " lifted, " << (near_rim ? "start near a rim" : "start inside");
   *description = d.str();
   return s;
 }
@@ -179,12 +208,12 @@ struct Generated {
   bool valid = false;
 };
 
-Generated generate(std::uint64_t seed, int index) {
+Generated generate(std::uint64_t seed, int index, CampaignGenerator generator) {
   Rng rng = rollout_stream(splitmix64(seed) ^ 0x5eedca3a16e5ULL, static_cast<std::uint64_t>(index));
   Generated g;
   g.task.index = index;
   for (int attempt = 0; attempt < kGenerationAttempts; ++attempt) {
-    g.scene = draw_scene(rng, &g.task.description);
+    g.scene = draw_scene(rng, generator, &g.task.description);
     g.task.yaml = to_yaml(g.scene, index, g.task.description);
     if (loads(g.task.yaml)) {
       g.valid = true;
@@ -322,7 +351,8 @@ std::map<int, nlohmann::json> recorded(const std::filesystem::path& file, const 
     if (line.empty()) continue;
     try {
       const nlohmann::json j = nlohmann::json::parse(line);
-      if (j.value("seed", std::uint64_t{0}) == options.seed && j.value("n", 0) == options.rollouts)
+      if (j.value("seed", std::uint64_t{0}) == options.seed && j.value("n", 0) == options.rollouts &&
+          j.value("generator", "default") == campaign_generator_name(options.generator))
         out[j["index"].get<int>()] = j;
     } catch (const std::exception&) {  // a line cut by a kill: that task runs again
     }
@@ -348,7 +378,13 @@ CampaignRecord record_from_json(const nlohmann::json& j) {
 
 }  // namespace
 
-CampaignTask generate_campaign_task(std::uint64_t seed, int index) { return generate(seed, index).task; }
+const char* campaign_generator_name(CampaignGenerator g) {
+  return g == CampaignGenerator::kWide ? "wide" : "default";
+}
+
+CampaignTask generate_campaign_task(std::uint64_t seed, int index, CampaignGenerator generator) {
+  return generate(seed, index, generator).task;
+}
 
 nlohmann::json campaign_record_json(const CampaignRecord& r) {
   return {{"index", r.index},
@@ -388,7 +424,7 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       rec = record_from_json(it->second);
       ++sum.resumed;
     } else {
-      const Generated g = generate(options.seed, i);
+      const Generated g = generate(options.seed, i, options.generator);
       if (!g.valid) {
         rec.index = i;
         rec.status = "invalid";
@@ -413,6 +449,8 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       nlohmann::json line = campaign_record_json(rec);
       line["seed"] = options.seed;
       line["n"] = options.rollouts;
+      if (options.generator != CampaignGenerator::kDefault)
+        line["generator"] = campaign_generator_name(options.generator);
       log << json_text(line) << "\n" << std::flush;
     }
     ++sum.run;

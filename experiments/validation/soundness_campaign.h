@@ -26,8 +26,15 @@ struct CampaignTask {
   std::string description;
 };
 
-// Task `index` of campaign `seed`: the same pair always gives the same text.
-CampaignTask generate_campaign_task(std::uint64_t seed, int index);
+// Which scenes a campaign draws (docs/validation.md "Generator"). kWide adds what the default leaves out:
+// friction up to 1.5 (mu >= 1, where a face's cone is wider than 45 degrees), boxes lifted off the floor (a
+// tunnel under a C-obstacle, rims over free space) and starts near a face's rim.
+enum class CampaignGenerator { kDefault, kWide };
+const char* campaign_generator_name(CampaignGenerator g);
+
+// Task `index` of campaign `seed`: the same triple always gives the same text.
+CampaignTask generate_campaign_task(std::uint64_t seed, int index,
+                                    CampaignGenerator generator = CampaignGenerator::kDefault);
 
 // What the false-alarm check found for one task (CampaignOptions::false_alarm_check).
 struct FalseAlarmCheck {
@@ -41,6 +48,7 @@ struct CampaignOptions {
   int tasks = 30;
   int first = 0;  // the first task index run (tasks [first, tasks))
   std::uint64_t seed = 1;
+  CampaignGenerator generator = CampaignGenerator::kDefault;
   int rollouts = 150;            // extreme-mode rollouts per task
   int threads = 1;               // rollout threads (results are identical for every count)
   double verifier_budget = 120;  // s of wall clock per verification; a task over it is recorded, not scored

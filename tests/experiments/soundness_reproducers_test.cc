@@ -161,6 +161,26 @@ TEST(SoundnessCampaign, TasksAreSeededAndLoad) {
   EXPECT_NE(generate_campaign_task(7, 0).yaml, generate_campaign_task(8, 0).yaml);
 }
 
+// The wide generator draws what the default leaves out (friction >= 1, lifted boxes, starts near a rim), its
+// tasks load and are seeded, and it differs from the default generator for the same seed.
+TEST(SoundnessCampaign, WideTasksReachFrictionAboveOneLiftedBoxesAndRims) {
+  int high_friction = 0, lifted = 0, near_rim = 0;
+  for (int i = 0; i < 60; ++i) {
+    const CampaignTask a = generate_campaign_task(7, i, CampaignGenerator::kWide);
+    EXPECT_EQ(a.yaml, generate_campaign_task(7, i, CampaignGenerator::kWide).yaml);
+    std::shared_ptr<const LoadedTask> task;
+    ASSERT_NO_THROW(task = load_task_from_string(a.yaml, "campaign")) << a.yaml;
+    high_friction += task->task.friction >= 1;
+    for (const ConvexPart& box : task->task.cspace) lifted += box.box.min.z() > task->task.bounds->min.z();
+    near_rim += a.description.find("start near a rim") != std::string::npos;
+    EXPECT_NE(a.description.find("wide: "), std::string::npos) << a.description;
+  }
+  EXPECT_GT(high_friction, 0);
+  EXPECT_GT(lifted, 0);
+  EXPECT_GT(near_rim, 0);
+  EXPECT_NE(generate_campaign_task(7, 0, CampaignGenerator::kWide).yaml, generate_campaign_task(7, 0).yaml);
+}
+
 // The bounded campaign CI runs: 30 generated tasks, 60 extreme rollouts each, no soundness bug. The
 // false-alarm check is a stand-in here (cmt soundness-campaign passes cmt falsify's failure search): it must
 // be asked exactly about the tasks verified unreliable whose stable rollouts all succeeded, each saved as
