@@ -36,9 +36,11 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
       ->capture_default_str();
   cmd->add_option("-n,--rollouts", o->campaign.rollouts, "extreme-mode rollouts per task")
       ->capture_default_str();
-  cmd->add_option("--generator", o->generator,
-                  "default, or wide: friction up to 1.5, boxes lifted off the floor, starts near a rim "
-                  "(docs/validation.md \"Generator\"; a campaign resumes only with its own generator)")
+  cmd->add_option(
+         "--generator", o->generator,
+         "default, or wide: friction up to 1.5, boxes lifted off the floor, starts near a rim "
+         "(docs/validation.md \"Random-task soundness campaign\"; a campaign resumes only with its own "
+         "generator)")
       ->check(CLI::IsMember({"default", "wide"}))
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "rollout threads (0: all cores; results do not depend on it)");

@@ -101,14 +101,17 @@ std::vector<Vec3> top_rectangle(const Vec3& lo, const Vec3& hi, double z) {
   return {Vec3(lo.x(), lo.y(), z), Vec3(hi.x(), lo.y(), z), Vec3(hi.x(), hi.y(), z), Vec3(lo.x(), hi.y(), z)};
 }
 
-// A start centre on the face [flo, fhi] at height z, at least r inside it; with `near_rim`, within kRimBand *
-// L of that limit on one side of one axis.
-Vec3 start_centre(Rng& rng, const Vec3& flo, const Vec3& fhi, double z, double r, double L, bool near_rim) {
+// A start centre on the face [flo, fhi] at height z, at least r inside it. With `near_rim`, on one side of
+// one axis the start's extent toward the rim is `reach` (0 for a point, r for a square) and the gap between
+// the start and the rim is at most kRimBand * L.
+Vec3 start_centre(Rng& rng, const Vec3& flo, const Vec3& fhi, double z, double r, double L, bool near_rim,
+                  double reach) {
   Vec3 c(uniform(rng, flo.x() + r, fhi.x() - r), uniform(rng, flo.y() + r, fhi.y() - r), z);
   if (near_rim) {
     const int k = uniform_index(rng, 2);
-    const double band = std::min(kRimBand * L, std::max(0.0, fhi[k] - flo[k] - 2 * r));
-    c[k] = uniform01(rng) < 0.5 ? flo[k] + r + uniform(rng, 0, band) : fhi[k] - r - uniform(rng, 0, band);
+    const double band = std::min(kRimBand * L, std::max(0.0, fhi[k] - flo[k] - 2 * reach));
+    const double gap = uniform(rng, 0, band);
+    c[k] = uniform01(rng) < 0.5 ? flo[k] + reach + gap : fhi[k] - reach - gap;
   }
   return c;
 }
@@ -165,8 +168,11 @@ Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description
   const double z = face == 0 ? s.lo.z() : fhi.z();
   const double r = uniform(rng, 0.02, 0.4) * L;
   const bool near_rim = wide && uniform01(rng) < kNearRimChance;
-  const Vec3 c = start_centre(rng, flo, fhi, z, r, L, near_rim);
-  const int kind = uniform_index(rng, 5);
+  // Wide: the start's shape before its centre, so that a near-rim start is placed by its extent (the default
+  // draws the shape after the centre).
+  const int wide_kind = wide ? uniform_index(rng, 5) : -1;
+  const Vec3 c = start_centre(rng, flo, fhi, z, r, L, near_rim, wide_kind >= 0 && wide_kind <= 2 ? 0.0 : r);
+  const int kind = wide ? wide_kind : uniform_index(rng, 5);
   if (kind <= 2) {
     s.start_kind = "point";
     s.start = {c};

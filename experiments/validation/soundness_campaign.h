@@ -26,9 +26,9 @@ struct CampaignTask {
   std::string description;
 };
 
-// Which scenes a campaign draws (docs/validation.md "Generator"). kWide adds what the default leaves out:
-// friction up to 1.5 (mu >= 1, where a face's cone is wider than 45 degrees), boxes lifted off the floor (a
-// tunnel under a C-obstacle, rims over free space) and starts near a face's rim.
+// Which scenes a campaign draws (docs/validation.md "Random-task soundness campaign"). kWide adds what the
+// default leaves out: friction up to 1.5 (mu >= 1, where a face's cone is wider than 45 degrees), boxes
+// lifted off the floor (a tunnel under a C-obstacle, rims over free space) and starts near a face's rim.
 enum class CampaignGenerator { kDefault, kWide };
 const char* campaign_generator_name(CampaignGenerator g);
 

@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -161,6 +164,29 @@ TEST(SoundnessCampaign, TasksAreSeededAndLoad) {
   EXPECT_NE(generate_campaign_task(7, 0).yaml, generate_campaign_task(8, 0).yaml);
 }
 
+// The gap between a start and the nearest rim of its face's top (the floor: the bounds; else the box whose
+// top holds the start), over the start's points.
+double rim_gap(const Task& t) {
+  const Vec3& p0 = t.start.points.front();
+  AxisBox face = *t.bounds;
+  for (const ConvexPart& box : t.cspace)
+    if (std::abs(box.box.max.z() - p0.z()) < 1e-9 && box.box.min.x() <= p0.x() && p0.x() <= box.box.max.x() &&
+        box.box.min.y() <= p0.y() && p0.y() <= box.box.max.y())
+      face = box.box;
+  double gap = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : t.start.points)
+    for (int k = 0; k < 2; ++k) gap = std::min({gap, p[k] - face.min[k], face.max[k] - p[k]});
+  return gap;
+}
+
+// kRimBand (.05 room units) at the largest room unit: 2 in times the task's unit (docs/validation.md).
+double max_rim_band(const std::string& yaml) {
+  const double per_inch = yaml.find("units: mm") != std::string::npos    ? 25.4
+                          : yaml.find("units: m\n") != std::string::npos ? 0.0254
+                                                                         : 1.0;
+  return 0.05 * 2 * per_inch + 1e-9;
+}
+
 // The wide generator draws what the default leaves out (friction >= 1, lifted boxes, starts near a rim), its
 // tasks load and are seeded, and it differs from the default generator for the same seed.
 TEST(SoundnessCampaign, WideTasksReachFrictionAboveOneLiftedBoxesAndRims) {
@@ -172,7 +198,13 @@ TEST(SoundnessCampaign, WideTasksReachFrictionAboveOneLiftedBoxesAndRims) {
     ASSERT_NO_THROW(task = load_task_from_string(a.yaml, "campaign")) << a.yaml;
     high_friction += task->task.friction >= 1;
     for (const ConvexPart& box : task->task.cspace) lifted += box.box.min.z() > task->task.bounds->min.z();
-    near_rim += a.description.find("start near a rim") != std::string::npos;
+    if (a.description.find("start near a rim") != std::string::npos) {
+      ++near_rim;
+      const Region& start = task->task.start;
+      if (start.kind != Region::Kind::kSegment) {
+        EXPECT_LE(rim_gap(task->task), max_rim_band(a.yaml)) << a.yaml;
+      }
+    }
     EXPECT_NE(a.description.find("wide: "), std::string::npos) << a.description;
   }
   EXPECT_GT(high_friction, 0);
