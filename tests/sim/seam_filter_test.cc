@@ -89,5 +89,48 @@ TEST(SeamFilter, ChangesNothingAtARealConcaveEdge) {
   }
 }
 
+// A slot narrower than tau between two boxes that do not abut (campaign task 1518, `cmt soundness-campaign`
+// seed 3): wall A's face x = 40 and box B's face x = 40.05 across a 0.05 mm slot above the floor z = 30. A
+// damper pressing into A's wall while descending the slot slides down it (alpha = 78.7 deg from the wall's
+// inward normal, mu = .1) and stops on the floor at A's wall. A's wall is a real face: the robot moved 2 tau
+// out of it overlaps B, but B does not reach A's face, so the filter keeps the contact and the robot never
+// sinks into A (it sank 0.057 mm in task 1518 when B counted as covering A's face).
+TEST(SeamFilter, KeepsTheWallsOfASlotNarrowerThanItsTolerance) {
+  const auto slot = load_task_from_string(R"(
+name: narrow_slot
+units: mm
+friction: 0.1
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.05, theta_f: 0.05}
+cspace:
+  - box: {min: [0, 0, 0], max: [40, 60, 60]}
+  - box: {min: [40.05, 0, 0], max: [100, 60, 50]}
+  - box: {min: [0, 0, 0], max: [100, 60, 30]}
+bounds: {min: [0, 0, 0], max: [100, 60, 100]}
+start: {point: [40, 30, 45]}
+goal:
+  - {polygon: [[40, 0, 30], [40.05, 0, 30], [40.05, 60, 30], [40, 60, 30]]}
+motions: {down: {damper: [-0.2, 0, -1]}}
+strategies: {s: [down]}
+)",
+                                          "narrow_slot");
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  const auto scene = RolloutScene::build(slot, options);
+  const double s = scene->meters_per_unit();
+  const double tau = options.scene.seam_filter_relative * slot->cspace.scale();  // task units
+  ASSERT_GT(tau, 2 * 0.05) << "the slot must be narrow enough for the filter to consider it";
+  RolloutRunner runner(scene);
+  const Motion m{"down", Motion::Kind::kDamper, Vec3(-0.2, 0, -1).normalized(), {}};
+  double min_x = 1e9;
+  Vec3 end = Vec3::Zero();
+  runner.drive(Vec3(40.025, 30, 45), m, 2.0, [&](const StepState& st) {
+    min_x = std::min(min_x, st.position.x());
+    end = st.position;
+  });
+  const double contact = kAtomRelativeTolerance * slot->cspace.scale();
+  EXPECT_GT(min_x, 40 - contact) << "sank " << (40 - min_x) * s << " m into the wall";
+  EXPECT_NEAR(end.z(), 30, contact) << "stopped above the slot's floor";
+}
+
 }  // namespace
 }  // namespace cmt
