@@ -8,10 +8,10 @@ cd "$(dirname "$0")/.."
 dir="${1:-out/plan}"
 mkdir -p "$dir"
 
-plan() {  # plan TASK [cmt plan options...]
-  local task="$1"
-  shift
-  build/bin/cmt plan "models/tasks/$task.yaml" --json -o "$dir/${task}_planned.yaml" "$@" >"$dir/${task}.json" ||
+plan() {  # plan TASK LABEL [cmt plan options...]: writes LABEL.json and LABEL_planned.yaml
+  local task="$1" label="$2"
+  shift 2
+  build/bin/cmt plan "models/tasks/$task.yaml" --json -o "$dir/${label}_planned.yaml" "$@" >"$dir/${label}.json" ||
     {
       status=$?
       echo "cmt plan $task failed with status $status" >&2
@@ -19,7 +19,10 @@ plan() {  # plan TASK [cmt plan options...]
     }
 }
 
-plan cube --check 100 --threads 2 --seed 1  # Buckley Sec 6.3.1: one motion that sticks on the cube bottom
-plan hole --check 100 --threads 2 --seed 1  # Sec 6.3.3: stick on the far wall, then on the bottom
-plan cube_sensing --termination position --check 100 --threads 2 --seed 1  # Sec 6.3.2: stop by sensed position
+plan cube cube --check 100 --threads 2 --seed 1  # Buckley Sec 6.3.1: one motion that sticks on the cube bottom
+plan hole hole --check 100 --threads 2 --seed 1  # Sec 6.3.3: stick on the far wall, then on the bottom
+# Sec 6.3.2: stop by sensed position
+plan cube_sensing cube_sensing --termination position --check 100 --threads 2 --seed 1
+# Type 3 (Sec 6.7.6): stop by sensed position and force, anywhere on the cube bottom
+plan cube cube_force --termination force --check 100 --threads 2 --seed 1
 exit 0

@@ -1,9 +1,9 @@
 // `cmt plan TASK --states [--max-atoms K] [--friction MU] [--eps-s E] [--theta-f T] [--list] --json`: the
-// primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--termination sticking|position]
-// [--max-atoms K] [--max-motions M] --json [-o OUT.yaml] [--check N] [--extremes N]`: the planner's search
-// over sticking arcs, or with the goal's sensed-position set (types 1 and 2, §6.5–6.7, goal_stops.h), the
-// planned strategy checked by the verifier, by rollouts and by §6.3.4's extreme-point experiment
-// (docs/planner.md).
+// primitive states of Buckley's planner (§6.4.1, Table 6.3). `cmt plan TASK [--termination S] [--max-atoms K]
+// [--max-motions M] --json [-o OUT.yaml] [--check N] [--extremes N]`: the planner's search over sticking
+// arcs, or with the goal's sensed-position set (S = position) and sensed-force cones (S = force): types 1, 2
+// and 3, §6.5–6.7, goal_stops.h; the planned strategy checked by the verifier, by rollouts and by §6.3.4's
+// extreme-point experiment (docs/planner.md).
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -95,6 +95,14 @@ nlohmann::json cpositions_json(const planner::CPositionSet& set, int dimension) 
   return pieces;
 }
 
+// Force cones as {direction, angle}.
+nlohmann::json cones_json(const std::vector<ForceCone>& cones, int dimension) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ForceCone& f : cones)
+    out.push_back({{"direction", point_json(f.direction, dimension)}, {"angle", f.angle}});
+  return out;
+}
+
 // Axis boxes as {min, max} points.
 nlohmann::json boxes_json(const std::vector<AxisBox>& boxes, int dimension) {
   nlohmann::json out = nlohmann::json::array();
@@ -120,7 +128,7 @@ std::vector<std::string> planned_motion_names(const Task& task, std::size_t n) {
 std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::string& text,
                                                const LoadedTask& task, const planner::PlanResult& plan,
                                                const std::vector<std::string>& names,
-                                               const std::vector<AxisBox>& spositions, nlohmann::json& out) {
+                                               const MotionTermination& sensed, nlohmann::json& out) {
   if (plan.steps.empty()) {
     out["strategy"] = nlohmann::json::array();
     out["strategy_reason"] = "the start lies in the goal: no motion is needed";
@@ -135,7 +143,8 @@ std::shared_ptr<const LoadedTask> add_strategy(const PlanCli& cli, const std::st
   }
   std::vector<AddedMotion> motions;
   for (std::size_t i = 0; i < plan.steps.size(); ++i)
-    motions.push_back({names[i], Motion::Kind::kSpring, plan.steps[i].arc.commanded, false, spositions});
+    motions.push_back(
+        {names[i], Motion::Kind::kSpring, plan.steps[i].arc.commanded, false, sensed.position, sensed.force});
   const std::string name = free_strategy_name(task.task, "planned");
   const std::string planned = task_yaml_with_motions(text, task.task, motions, name, "the planner's");
   const auto planned_task = load_task_from_string(planned, cli.task);
@@ -207,10 +216,12 @@ PlanSetup plan_setup(const LoadedTask& task, const PlanCli& cli) {
   request.goal_near.assign(request.goal_atom.size(), false);
   for (const planner::PartialGoalFace& f : stops.partial_faces)
     request.goal_near[static_cast<std::size_t>(f.atom)] = true;
-  if (cli.termination == "position") {
-    stops.sensed_positions = planner::goal_sensed_positions(task);
-    stops.senses = planner::sensing_atoms(c, stops.sensed_positions, u.eps_s);
+  if (cli.termination == "force") stops.sensed_forces = planner::goal_sensed_forces(task);
+  if (cli.termination == "position" || cli.termination == "force") {
+    stops.sensed_positions = planner::goal_sensed_positions(task, stops.sensed_forces);
+    stops.senses = planner::sensing_atoms(task, stops.sensed_positions, stops.sensed_forces);
     out.terminate.position = stops.sensed_positions;
+    out.terminate.force = stops.sensed_forces;
   }
   request.eps_s = u.eps_s;
   request.theta_f = u.theta_f;
@@ -221,10 +232,10 @@ PlanSetup plan_setup(const LoadedTask& task, const PlanCli& cli) {
   return out;
 }
 
-// The plan's motions (name, commanded position, depth, source, cpositions, spositions) and steps (state,
-// motion, targets, heads) into out["motions"] and out["steps"].
+// The plan's motions (name, commanded position, depth, source, cpositions, spositions, sforces) and steps
+// (state, motion, targets, heads) into out["motions"] and out["steps"].
 void add_plan_steps(const LoadedTask& task, const planner::PlanResult& plan,
-                    const std::vector<std::string>& names, const std::vector<AxisBox>& spositions,
+                    const std::vector<std::string>& names, const MotionTermination& sensed,
                     nlohmann::json* out) {
   const CSpace& c = task.cspace;
   nlohmann::json motions = nlohmann::json::array(), steps = nlohmann::json::array();
@@ -237,7 +248,8 @@ void add_plan_steps(const LoadedTask& task, const planner::PlanResult& plan,
                                   : arc.from_chain_projection ? "chain projection"
                                                               : "simulation"},
                        {"cpositions", cpositions_json(arc.arc.cpositions, task.task.dimension)},
-                       {"spositions", boxes_json(spositions, task.task.dimension)}});
+                       {"spositions", boxes_json(sensed.position, task.task.dimension)},
+                       {"sforces", cones_json(sensed.force, task.task.dimension)}});
     steps.push_back({{"state", atom_names(c, plan.steps[i].state)},
                      {"motion", names[i]},
                      {"targets", atom_names(c, arc.arc.targets)},
@@ -261,10 +273,6 @@ bool plan_verified(const planner::PlanResult& plan, const nlohmann::json& out) {
 }
 
 void run_plan_search(const PlanCli& cli, CommandState& state) {
-  if (cli.termination == "force")
-    throw CLI::ValidationError("--termination",
-                               "force sensing (type 3 arcs) is not built: use sticking or position "
-                               "(docs/planner.md)");
   const auto start = std::chrono::steady_clock::now();
   const std::string text = text_with_overrides(cli);
   const auto task = load_task_from_string(text, cli.task);
@@ -285,13 +293,15 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
   };
   request.prefetch = [&](const std::vector<std::vector<Vec3>>& chains) { verdicts.prefetch(chains); };
   request.lookahead = cli.threads;
-  const std::vector<AxisBox> spositions = setup.stops.sensed_positions;
+  const MotionTermination sensed = setup.terminate;  // P_s and F_s (empty for sticking termination)
   planner::AtomSimulation simulation(c, task->task.uncertainty, std::move(setup.stops));
   planner::PlanResult plan;
-  if (cli.termination == "position" && spositions.empty())
+  if (cli.termination != "sticking" && sensed.position.empty())
     plan.reason =
         "no sensed-position set: no goal polygon on an axis-aligned plane keeps eps_s clear of the contacts "
-        "outside the goal (docs/planner.md, \"Goal stops\")";
+        "outside the goal that may sense its force (docs/planner.md, \"Goal stops\")";
+  else if (cli.termination == "force" && sensed.force.empty())
+    plan.reason = "no sensed-force set: no goal polygon lies on a face with a circular friction cone";
   else
     plan = planner::plan_sticking(simulation, c, request);
   verdicts.stop();  // checks verified ahead that the search did not need
@@ -301,7 +311,8 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"task_file", std::filesystem::absolute(cli.task).string()},
                         {"found", plan.found},
                         {"termination", cli.termination},
-                        {"spositions", boxes_json(spositions, task->task.dimension)},
+                        {"spositions", boxes_json(sensed.position, task->task.dimension)},
+                        {"sforces", cones_json(sensed.force, task->task.dimension)},
                         {"start_states", states_json(c, plan.start_states)},
                         {"expanded", plan.expanded},
                         {"arcs", plan.arcs},
@@ -315,9 +326,9 @@ void run_plan_search(const PlanCli& cli, CommandState& state) {
                         {"search_seconds", search_seconds},
                         {"verifier_seconds", verdicts.seconds()}};
   const std::vector<std::string> names = planned_motion_names(task->task, plan.steps.size());
-  add_plan_steps(*task, plan, names, spositions, &out);
+  add_plan_steps(*task, plan, names, sensed, &out);
   if (plan.found) {
-    const auto planned = add_strategy(cli, text, *task, plan, names, spositions, out);
+    const auto planned = add_strategy(cli, text, *task, plan, names, sensed, out);
     if (planned && cli.extremes > 0) add_extremes(cli, planned, plan, names, out);
   } else {
     out["reason"] = plan.reason, out["strategy"] = nullptr;
@@ -398,9 +409,12 @@ void add_plan_command(CLI::App& app, CommandState& state) {
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--no-chain-projections", cli->no_chain_projections,
                 "no continuations of the start projections (later motions from the simulation's cells only)");
-  cmd->add_option("--termination", cli->termination,
-                  "how the planned motions end: sticking (the default, type 1) or position (type 2: also on "
-                  "sensing a position in the goal's sensed-position set)")
+  cmd->add_option(
+         "--termination", cli->termination,
+         "how the planned motions end: sticking (the default, type 1), position (type 2: also on "
+         "sensing a position in the goal's sensed-position set) or force (type 3: on sensing a position "
+         "in that set, grown to the goal's edges where force tells walls apart, and a force in the goal "
+         "faces' sensed-force cones)")
       ->check(CLI::IsMember({"sticking", "position", "force"}));
   cmd->add_option("--check", cli->check,
                   "run N MuJoCo rollouts of the planned strategy (`cmt validate`) and report them as check")

@@ -29,6 +29,19 @@ YAML::Node boxes_yaml(const std::vector<AxisBox>& boxes, const Task& task) {
   return list;
 }
 
+// A list of `{direction, angle}` cones (docs/task-format.md, "Termination sets").
+YAML::Node cones_yaml(const std::vector<ForceCone>& cones, const Task& task) {
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const ForceCone& f : cones) {
+    YAML::Node item;
+    item.SetStyle(YAML::EmitterStyle::Flow);
+    item["direction"] = point_yaml(f.direction, task);
+    item["angle"] = f.angle;
+    list.push_back(item);
+  }
+  return list;
+}
+
 }  // namespace
 
 std::string task_yaml_with_motions(const std::string& task_yaml, const Task& task,
@@ -46,6 +59,7 @@ std::string task_yaml_with_motions(const std::string& task_yaml, const Task& tas
     motion[m.kind == Motion::Kind::kSpring ? "spring" : "damper"] = v;
     if (m.edr) motion["edr"] = true;
     if (!m.sensed_positions.empty()) motion["terminate"]["position"] = boxes_yaml(m.sensed_positions, task);
+    if (!m.sensed_forces.empty()) motion["terminate"]["force"] = cones_yaml(m.sensed_forces, task);
     root["motions"][m.name] = motion;
     list.push_back(m.name);
   }

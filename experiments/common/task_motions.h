@@ -16,6 +16,7 @@ struct AddedMotion {
   Vec3 target = Vec3::Zero();             // damper: direction; spring: commanded position (task units)
   bool edr = false;                       // marks the motion whose termination the EDR report reads
   std::vector<AxisBox> sensed_positions;  // `terminate: {position: ...}` when not empty (type 2)
+  std::vector<ForceCone> sensed_forces;   // `terminate: {force: ...}` when not empty (type 3)
 };
 
 // The text (comments dropped). Throws InputError naming `motions.NAME` when a motion name is taken, or

@@ -13,6 +13,7 @@ std::string task_yaml_with_dampers(const std::string& task_yaml, const Task& tas
                        Motion::Kind::kDamper,
                        directions[i],
                        i + 1 == directions.size(),
+                       {},
                        {}});
   return task_yaml_with_motions(task_yaml, task, motions, strategy_name, "the EDR planner's");
 }

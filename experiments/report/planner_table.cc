@@ -58,13 +58,15 @@ std::string check_text(const json& run) {
 
 Table planner_table(const std::vector<json>& runs) {
   Table t;
-  t.headers = {"task", "found", "strategy", "motions", "verifier", "rollouts", "planning time (s)"};
+  t.headers = {"task",    "termination", "found",    "strategy",
+               "motions", "verifier",    "rollouts", "planning time (s)"};
   for (const json& run : runs) {
     const bool found = json_member(run, "found").get<bool>();
     std::ostringstream seconds;
     seconds.precision(3);
     seconds << json_number(run, "seconds");
     t.rows.push_back({text_cell(json_member(run, "task").get<std::string>()),
+                      text_cell(json_member(run, "termination").get<std::string>()),
                       text_cell(found ? "yes" : "no: " + json_member(run, "reason").get<std::string>()),
                       text_cell(names(json_member(run, "strategy"))), text_cell(motions_text(run)),
                       text_cell(found ? verified_text(run) : ""), text_cell(check_text(run)),

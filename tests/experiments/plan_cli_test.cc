@@ -1,9 +1,10 @@
 // `cmt plan` end to end (docs/planner.md): Table 6.3's cube row, the hole's atom counts with the table's
 // sensing errors, Buckley §6.3.1's one-motion cube plan with the verifier's verdict and rollouts, §6.3.2's
-// with position-sensing termination, and bad input.
+// with position-sensing termination, the cube with position- and force-sensing termination, and bad input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -131,6 +132,41 @@ TEST(CmtPlan, CubeSensingHasAOneMotionPlanWithItsSensedPositionSet) {
 // §6.3.3: the hole from the start segment on the top face. The first motion comes from the start projection
 // (the verifier from the segment itself: the simulation from the whole top face may leave it over its flat
 // edges), the second from a chain projection; the chain is verified, and every rollout reaches the goal.
+// Type 3 (§6.7.6) on the cube of §6.3.1: the motion stops on sensing a position in P_s and a force in F_s.
+// F_s is the bottom's friction cone widened by theta_f (about +z, half angle atan .25 + .3), which no wall's
+// widened cone meets, so P_s covers the whole bottom (goal_stops.h). The plan stops in the goal by sticking
+// on the bottom or by sensing; the verifier agrees, every rollout reaches the goal, and the rollouts of the
+// written strategy stop by sensing the force.
+TEST(CmtPlan, CubeForceSensingStopsAnywhereOnTheBottom) {
+  const std::string out = testing::TempDir() + "/cube_force_planned.yaml";
+  const Result r =
+      run("plan " + task("cube") + " --termination force --check 100 --seed 7 --threads 2 --json -o " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["found"].get<bool>()) << r.out;
+  EXPECT_EQ(j["termination"], "force");
+  ASSERT_EQ(j["sforces"].size(), 1u);
+  EXPECT_EQ(j["sforces"][0]["direction"], nlohmann::json::array({0.0, 0.0, 1.0}));
+  EXPECT_NEAR(j["sforces"][0]["angle"].get<double>(), std::atan(0.25) + 0.3, 1e-8);
+  ASSERT_EQ(j["spositions"].size(), 1u);
+  for (int k = 0; k < 2; ++k) {  // the whole bottom [-1, 1]^2, less a margin of ~1e-6 x scale
+    EXPECT_NEAR(j["spositions"][0]["min"][k].get<double>(), -1.0, 1e-4);
+    EXPECT_NEAR(j["spositions"][0]["max"][k].get<double>(), 1.0, 1e-4);
+  }
+  ASSERT_EQ(j["motions"].size(), 1u);
+  EXPECT_EQ(j["motions"][0]["sforces"], j["sforces"]);
+  for (const auto& atom : j["steps"][0]["targets"]) EXPECT_TRUE(atom == "f2" || atom == "goal") << atom;
+  EXPECT_TRUE(j["verified"]["reliable"].get<bool>());
+  EXPECT_EQ(j["check"]["rollouts"], 100);
+  EXPECT_EQ(j["check"]["successes"], 100);
+  EXPECT_EQ(j["check"]["outside"], 0);
+  const Result rollouts = run("rollout " + out + " --strategy planned -n 20 --seed 3 --json");
+  ASSERT_EQ(rollouts.status, 0) << rollouts.out;
+  const auto ro = nlohmann::json::parse(rollouts.out);
+  EXPECT_EQ(ro["successes"], 20);
+  for (const auto& o : ro["outcomes"]) EXPECT_EQ(o["termination"], "force") << o;
+}
+
 TEST(CmtPlan, HoleHasATwoMotionPlanFromTheStartProjectionThatTheRolloutsConfirm) {
   const Result r = run("plan " + task("hole") + " --check 60 --seed 7 --threads 2 --json");
   ASSERT_EQ(r.status, 0) << r.out;
@@ -240,8 +276,7 @@ TEST(CmtPlan, PositionTerminationWithoutASensedPositionSetFindsNothing) {
   EXPECT_NE(j["reason"].get<std::string>().find("no sensed-position set"), std::string::npos) << j["reason"];
 }
 
-TEST(CmtPlan, AnUnbuiltTerminationOrABadOverrideIsBadInput) {
-  EXPECT_EQ(run("plan " + task("cube") + " --termination force --json").status, 2);
+TEST(CmtPlan, AnUnknownTerminationOrABadOverrideIsBadInput) {
   EXPECT_EQ(run("plan " + task("cube") + " --termination sensing --json").status, 2);
   const Result planar = run("plan " + task("planar_blocks") + " --json");
   EXPECT_EQ(planar.status, 2);

@@ -1203,12 +1203,12 @@ TEST(Report, PlannedStrategiesSectionListsEachPlan) {
   EXPECT_EQ(cmt::report::render_markdown(content).find("Planned strategies"), std::string::npos);
   content.planner = cmt::report::planner_table({found, not_found});
   const std::string md = cmt::report::render_markdown(content);
-  EXPECT_NE(
-      md.find("| cube | yes | planned_1 | planned_1 to (0, 0, -2), depth 0.07, from e4, may stop in f2 | "
-              "reliable | 200 / 200 reached the goal, 0 ends outside the prediction (seed 1) | 4.5 |"),
-      std::string::npos)
+  EXPECT_NE(md.find("| cube | sticking | yes | planned_1 | planned_1 to (0, 0, -2), depth 0.07, from e4, may "
+                    "stop in f2 | "
+                    "reliable | 200 / 200 reached the goal, 0 ends outside the prediction (seed 1) | 4.5 |"),
+            std::string::npos)
       << md;
-  EXPECT_NE(md.find("| hole | no: no strategy of at most 3 motions |  |  |  | not run | 2 |"),
+  EXPECT_NE(md.find("| hole | sticking | no: no strategy of at most 3 motions |  |  |  | not run | 2 |"),
             std::string::npos)
       << md;
   EXPECT_NE(cmt::report::render_html(content).find("<h2 id=\"planner\">Planned strategies</h2>"),

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numbers>
 #include <optional>
 
 #include "verifier/atom_cone.h"
@@ -14,6 +16,9 @@ namespace {
 
 // Bisection steps for the scale of a goal's sensed rectangle (2^-40 of the polygon's bounding rectangle).
 constexpr int kRectangleBisections = 40;
+// Type 3 tries every subset of a goal polygon's sides as the ones P_s may reach (2^sides boxes); a polygon
+// of more sides gets the type 2 box.
+constexpr std::size_t kMaxSidesForSubsets = 8;
 // A goal polygon's normal within this (1 - |n_k|) of a coordinate axis lies on an axis-aligned plane.
 constexpr double kAxisAligned = 1e-12;
 
@@ -60,16 +65,24 @@ Vec3 polygon_normal(const std::vector<Vec3>& q) {
   return n.normalized();
 }
 
-// The centred axis rectangle (in the plane's two other axes) of a goal polygon on the plane x_k = level whose
-// axis box grown by `inset` stays `margin` inside every side m . x <= c (a side moves in by inset |m|_1 +
-// margin: the support of that cube along m), as a box 2 half_thickness thick; nothing when too small.
-std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, double inset,
-                                     double half_thickness, double margin) {
+// The axis rectangle (in the plane's two other axes) of a goal polygon on the plane x_k = level, centred in
+// the polygon shrunk side by side, whose axis box grown by insets[i] stays `margin` inside side i, m . x <=
+// c, of polygon_sides() (a side moves in by inset |m|_1 + margin: the support of that cube along m), as a box
+// 2 half_thickness thick; nothing when too small.
+std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k,
+                                     const std::vector<double>& insets, double half_thickness,
+                                     double margin) {
   const Vec3 n = Vec3::Unit(k);
-  const std::vector<HalfSpace> sides = polygon_sides(polygon, n);
-  AxisBox bound{polygon[0], polygon[0]};
-  for (const Vec3& q : polygon) bound.min = bound.min.cwiseMin(q), bound.max = bound.max.cwiseMax(q);
-  const Vec3 c = centroid(polygon);
+  std::vector<HalfSpace> sides = polygon_sides(polygon, n);
+  std::vector<Vec3> shrunk = polygon;  // the polygon with every side moved in: the rectangle is centred in it
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    sides[i].offset -= insets[i] * sides[i].normal.lpNorm<1>() + margin;
+    if (!shrunk.empty()) shrunk = clip_to_halfspace(shrunk, sides[i].normal, sides[i].offset);
+  }
+  if (shrunk.size() < 3) return std::nullopt;
+  AxisBox bound{shrunk[0], shrunk[0]};
+  for (const Vec3& q : shrunk) bound.min = bound.min.cwiseMin(q), bound.max = bound.max.cwiseMax(q);
+  const Vec3 c = centroid(shrunk);
   const auto fits = [&](double s) {
     for (int corner = 0; corner < 4; ++corner) {
       Vec3 q = c;
@@ -80,7 +93,7 @@ std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, do
         q[axis] = c[axis] + s * (end - c[axis]);
       }
       for (const HalfSpace& h : sides)
-        if (h.normal.dot(q) > h.offset - inset * h.normal.lpNorm<1>() - margin) return false;
+        if (h.normal.dot(q) > h.offset) return false;
     }
     return true;
   };
@@ -102,15 +115,39 @@ std::optional<AxisBox> inscribed_box(const std::vector<Vec3>& polygon, int k, do
   return box;
 }
 
-// Whether every contact point within r of the box lies in the goal: on a goal atom, or (the clipped part of
-// an atom, convex) inside one goal region.
-bool senses_goal_only(const LoadedTask& task, const std::vector<bool>& goal_atom, const AxisBox& box,
-                      double r) {
+// Per atom: whether its friction cone widened by theta_f may meet a cone of F_s (all atoms without F_s).
+// may_intersect_cone's false is certain, so an atom marked false never passes the force test (Def 4.1).
+std::vector<bool> may_sense_forces(const LoadedTask& task, const std::vector<ForceCone>& forces) {
+  const CSpace& c = task.cspace;
+  std::vector<bool> out(static_cast<std::size_t>(c.atom_count()), forces.empty());
+  if (forces.empty()) return out;
+  const AtomCones cones(c);
+  for (int atom = 0; atom < c.atom_count(); ++atom) {
+    const FrictionCone sensed = cones[atom].widened(task.task.uncertainty.theta_f);
+    for (const ForceCone& f : forces)
+      if (sensed.may_intersect_cone(CircularCone{f.direction, f.angle}))
+        out[static_cast<std::size_t>(atom)] = true;
+  }
+  return out;
+}
+
+// A box's extent across the plane x_k = level.
+double area(const AxisBox& box, int k) {
+  double a = 1;
+  for (int axis = 0; axis < 3; ++axis)
+    if (axis != k) a *= box.max[axis] - box.min[axis];
+  return a;
+}
+
+// Whether every contact point within r of the box that may pass the force test (`force_sensed`) lies in the
+// goal: on a goal atom, or (the clipped part of an atom, convex) inside one goal region.
+bool senses_goal_only(const LoadedTask& task, const std::vector<bool>& goal_atom,
+                      const std::vector<bool>& force_sensed, const AxisBox& box, double r) {
   const CSpace& c = task.cspace;
   const double tol = task.surface_tolerance();
   const AxisBox near = grown(box, r);
   for (int atom = 0; atom < c.atom_count(); ++atom) {
-    if (goal_atom[static_cast<std::size_t>(atom)]) continue;
+    if (goal_atom[static_cast<std::size_t>(atom)] || !force_sensed[static_cast<std::size_t>(atom)]) continue;
     const std::vector<Vec3> part = clip_to_box(atom_points(c, atom), near);
     if (part.empty()) continue;
     const bool inside = std::any_of(task.task.goal.begin(), task.task.goal.end(), [&](const Region& g) {
@@ -144,10 +181,11 @@ std::vector<PartialGoalFace> partial_goal_faces(const LoadedTask& task, const st
   return out;
 }
 
-std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task) {
+std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task, const std::vector<ForceCone>& forces) {
   const double eps_s = task.task.uncertainty.eps_s;
   const double margin = kSensedSetRelativeMargin * task.cspace.scale();
   const std::vector<bool> goal_atom = goal_atoms(task);
+  const std::vector<bool> force_sensed = may_sense_forces(task, forces);
   std::vector<AxisBox> out;
   for (const Region& g : task.task.goal) {
     if (g.kind != Region::Kind::kPolygon) continue;
@@ -155,19 +193,65 @@ std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task) {
     int k = 0;
     n.cwiseAbs().maxCoeff(&k);
     if (1 - std::abs(n[k]) > kAxisAligned) continue;
-    const std::optional<AxisBox> box =
-        inscribed_box(g.points, k, eps_s + margin, eps_s > 0 ? eps_s : margin, margin);
-    if (box && senses_goal_only(task, goal_atom, *box, eps_s + margin)) out.push_back(*box);
+    const double thickness = eps_s > 0 ? eps_s : margin;
+    const std::size_t sides = polygon_sides(g.points, Vec3::Unit(k)).size();
+    // Type 2: every side inset. Type 3: each subset of the sides inset (the rest not), the largest box that
+    // senses the goal only.
+    const std::uint32_t subsets = forces.empty() || sides > kMaxSidesForSubsets ? 1 : 1u << sides;
+    std::optional<AxisBox> best;
+    for (std::uint32_t open = 0; open < subsets; ++open) {
+      std::vector<double> insets(sides, eps_s + margin);
+      for (std::size_t i = 0; i < sides; ++i)
+        if ((open >> i) & 1u) insets[i] = 0;
+      const std::optional<AxisBox> box = inscribed_box(g.points, k, insets, thickness, margin);
+      if (box && (!best || area(*box, k) > area(*best, k)) &&
+          senses_goal_only(task, goal_atom, force_sensed, *box, eps_s + margin))
+        best = box;
+    }
+    if (best) out.push_back(*best);
   }
   return out;
 }
 
-std::vector<bool> sensing_atoms(const CSpace& cspace, const std::vector<AxisBox>& boxes, double eps_s) {
-  const double r = eps_s + kSensedSetRelativeMargin * cspace.scale();
+std::vector<ForceCone> goal_sensed_forces(const LoadedTask& task) {
+  const CSpace& c = task.cspace;
+  const double tol = task.surface_tolerance();
+  const AtomCones cones(c);
+  std::vector<ForceCone> out;
+  for (const Region& g : task.task.goal) {
+    if (g.kind != Region::Kind::kPolygon) continue;
+    for (const Face& f : c.faces()) {
+      if (std::any_of(g.points.begin(), g.points.end(),
+                      [&](const Vec3& q) { return std::abs(f.normal.dot(q) - f.offset) > tol; }))
+        continue;
+      std::vector<Vec3> overlap = g.points;
+      for (const HalfSpace& h : polygon_sides(f.polygon, f.normal))
+        if (!overlap.empty()) overlap = clip_to_halfspace(overlap, h.normal, h.offset);
+      if (overlap.size() < 3 || std::abs(polygon_area(overlap, f.normal)) <= tol * tol) continue;
+      if (!cones[f.id].circular()) continue;  // the task format's cones are circular, at most pi/2 wide
+      const CircularCone& cone = cones[f.id].generators()[0];
+      const ForceCone sensed{cone.axis.normalized(),
+                             cone.half_angle + task.task.uncertainty.theta_f + kSensedForceMargin};
+      if (sensed.angle > std::numbers::pi / 2) continue;
+      const bool known = std::any_of(out.begin(), out.end(), [&](const ForceCone& o) {
+        return (o.direction - sensed.direction).norm() <= kAxisAligned && o.angle >= sensed.angle;
+      });
+      if (!known) out.push_back(sensed);
+    }
+  }
+  return out;
+}
+
+std::vector<bool> sensing_atoms(const LoadedTask& task, const std::vector<AxisBox>& boxes,
+                                const std::vector<ForceCone>& forces) {
+  const CSpace& cspace = task.cspace;
+  const double r = task.task.uncertainty.eps_s + kSensedSetRelativeMargin * cspace.scale();
+  const std::vector<bool> force_sensed = may_sense_forces(task, forces);
   std::vector<bool> out(static_cast<std::size_t>(cspace.atom_count()), false);
   for (int atom = 0; atom < cspace.atom_count(); ++atom)
     for (const AxisBox& box : boxes)
-      if (!clip_to_box(atom_points(cspace, atom), grown(box, r)).empty())
+      if (force_sensed[static_cast<std::size_t>(atom)] &&
+          !clip_to_box(atom_points(cspace, atom), grown(box, r)).empty())
         out[static_cast<std::size_t>(atom)] = true;
   return out;
 }

@@ -9,7 +9,12 @@
 //     m . p + tan(phi + theta_v) d <= c - eps_s (1 + tan(phi + theta_v)): linear in p (goal_sticking);
 //   - sensing (type 2): the motion stops when in contact with its sensed position in P_s. P_s is built so
 //     that every contact point within eps_s of it lies in the goal: such stops are goal stops, wherever the
-//     robot touches P_s grown by eps_s.
+//     robot touches P_s grown by eps_s;
+//   - sensing positions and forces (type 3): the motion stops when its sensed position is in P_s and its
+//     sensed force direction in F_s. F_s holds the goal faces' friction cones widened by theta_f, so a stop
+//     on the goal face passes the force test; P_s need then keep clear only of the contacts whose widened
+//     cones may meet F_s (a wall beside a goal floor cannot sense the floor's force), and may reach the
+//     goal's edges where a type 2 P_s must stay eps_s inside them.
 #pragma once
 
 #include <vector>
@@ -45,17 +50,33 @@ inline constexpr double kSensedSetRelativeMargin = 1e-6;
 // position in it. A box is kept only when every contact point (of any atom) within eps_s + margin of it
 // lies in the goal (within the surface tolerance): a wall along the goal's edge stays a margin clear. Empty
 // when no goal polygon gives one.
-std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task);
+// With F_s (`forces`, type 3) the contact points whose atom's friction cone widened by theta_f cannot meet
+// F_s are not sensed, and each side of a goal polygon is either inset as for type 2 or not (the box then
+// reaches within a margin of it: a wall there cannot sense the goal's force): of the boxes of every such
+// choice that sense the goal only, the largest.
+std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task, const std::vector<ForceCone>& forces = {});
 
-// Per atom: whether the atom has a point within eps_s + margin of one of the boxes (a type 2 motion may stop
-// there by sensing).
-std::vector<bool> sensing_atoms(const CSpace& cspace, const std::vector<AxisBox>& boxes, double eps_s);
+// The margin (radians) by which F_s clears the rim of a goal face's widened friction cone: twice the
+// verifier's kForceContainmentMargin, so that the verifier counts every stop on the face as surely sensed.
+inline constexpr double kSensedForceMargin = 2e-9;
 
-// The goal stops of a plan: sticking on partial goal faces, and P_s with the atoms it may stop on.
+// F_s for a type 3 motion that ends in the goal: per goal polygon on a face of the C-space, the cone about
+// the face's friction-cone axis (the reaction's mean direction) whose half angle is the friction angle plus
+// theta_f and kSensedForceMargin; one cone per distinct face direction.
+std::vector<ForceCone> goal_sensed_forces(const LoadedTask& task);
+
+// Per atom: whether the atom has a point within eps_s + margin of one of the boxes and, with F_s, a friction
+// cone widened by theta_f that may meet one of its cones (a type 2 or 3 motion may stop there by sensing).
+std::vector<bool> sensing_atoms(const LoadedTask& task, const std::vector<AxisBox>& boxes,
+                                const std::vector<ForceCone>& forces = {});
+
+// The goal stops of a plan: sticking on partial goal faces, and P_s (and F_s) with the atoms they may stop
+// on.
 struct GoalStops {
   std::vector<PartialGoalFace> partial_faces;
-  std::vector<AxisBox> sensed_positions;  // P_s (type 2); empty for sticking termination
-  std::vector<bool> senses;               // per atom, sensing_atoms() of P_s; empty without P_s
+  std::vector<AxisBox> sensed_positions;  // P_s (types 2 and 3); empty for sticking termination
+  std::vector<ForceCone> sensed_forces;   // F_s (type 3); empty otherwise
+  std::vector<bool> senses;               // per atom, sensing_atoms() of P_s and F_s; empty without P_s
 };
 
 }  // namespace cmt::planner

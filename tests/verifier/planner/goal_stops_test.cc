@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "controllers/termination.h"
 #include "models/loaded_task.h"
+#include "verifier/atom_cone.h"
 #include "verifier/planner/search.h"
 #include "verifier/planner/simulation.h"
 #include "verifier/planner/task_atoms.h"
@@ -42,7 +44,7 @@ GoalStops stops_of(const LoadedTask& t, bool sensing) {
   s.partial_faces = partial_goal_faces(t, goal_atoms(t));
   if (sensing) {
     s.sensed_positions = goal_sensed_positions(t);
-    s.senses = sensing_atoms(t.cspace, s.sensed_positions, t.task.uncertainty.eps_s);
+    s.senses = sensing_atoms(t, s.sensed_positions);
   }
   return s;
 }
@@ -76,7 +78,7 @@ TEST(GoalSensedPositions, TheGoalShrunkByEpsSAndTwoEpsSThick) {
   EXPECT_DOUBLE_EQ(boxes[0].min.z(), -1.2);
   EXPECT_DOUBLE_EQ(boxes[0].max.z(), -0.8);
   // Only the bottom lies within eps_s of it (the walls and the bottom's edges are .4 away).
-  const std::vector<bool> senses = sensing_atoms(t->cspace, boxes, 0.2);
+  const std::vector<bool> senses = sensing_atoms(*t, boxes);
   for (int a = 0; a < t->cspace.atom_count(); ++a)
     EXPECT_EQ(senses[a], a == face_with_normal(t->cspace, Vec3::UnitZ())) << t->cspace.atom_name(a);
 }
@@ -90,7 +92,7 @@ TEST(GoalSensedPositions, WallsAlongTheGoalsEdgeStayClearAndASmallGoalHasNone) {
   ASSERT_EQ(boxes.size(), 1u);
   const double margin = kSensedSetRelativeMargin * cube->cspace.scale();
   EXPECT_NEAR(boxes[0].max.x(), 0.8 - 2 * margin, 1e-9);
-  const std::vector<bool> senses = sensing_atoms(cube->cspace, boxes, 0.2);
+  const std::vector<bool> senses = sensing_atoms(*cube, boxes);
   EXPECT_EQ(std::count(senses.begin(), senses.end(), true), 1);
   LoadedTask small = *cube;
   small.task.goal = {
@@ -98,6 +100,54 @@ TEST(GoalSensedPositions, WallsAlongTheGoalsEdgeStayClearAndASmallGoalHasNone) {
              {Vec3(-0.15, -0.15, -1), Vec3(0.15, -0.15, -1), Vec3(0.15, 0.15, -1), Vec3(-0.15, 0.15, -1)},
              "goal"}};
   EXPECT_TRUE(goal_sensed_positions(small).empty());
+}
+
+// Type 3 on the whole closed bottom (cube.yaml): F_s is the bottom's friction cone (half angle atan .25)
+// widened by theta_f = .3, about +z (the reaction on the robot); the walls' cones lie about horizontal axes
+// and, widened, stay pi/2 - 2 (atan .25 + .3) = .48 rad clear of it, so P_s may reach every side of the
+// bottom: the bottom itself within a margin, 2 eps_s thick. Only the bottom and its edges and corners (whose
+// summed cones hold the bottom's) may stop by sensing there, all in the goal.
+TEST(GoalSensedPositions, TypeThreeReachesTheWallsAroundTheGoal) {
+  const auto cube = load("cube");
+  const std::vector<ForceCone> forces = goal_sensed_forces(*cube);
+  ASSERT_EQ(forces.size(), 1u);
+  EXPECT_NEAR((forces[0].direction - Vec3::UnitZ()).norm(), 0, 1e-12);
+  EXPECT_NEAR(forces[0].angle, std::atan(0.25) + 0.3 + kSensedForceMargin, 1e-12);
+  const std::vector<AxisBox> boxes = goal_sensed_positions(*cube, forces);
+  ASSERT_EQ(boxes.size(), 1u);
+  const double margin = kSensedSetRelativeMargin * cube->cspace.scale();
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(boxes[0].max[k], 1 - margin, 1e-9);
+    EXPECT_NEAR(boxes[0].min[k], -1 + margin, 1e-9);
+  }
+  EXPECT_DOUBLE_EQ(boxes[0].min.z(), -1.2);
+  EXPECT_DOUBLE_EQ(boxes[0].max.z(), -0.8);
+  const std::vector<bool> senses = sensing_atoms(*cube, boxes, forces);
+  int sensed = 0;
+  for (int a = 0; a < cube->cspace.atom_count(); ++a) {
+    const std::vector<Vec3> points = atom_points(cube->cspace, a);
+    const bool on_bottom =
+        std::all_of(points.begin(), points.end(), [](const Vec3& p) { return std::abs(p.z() + 1) < 1e-12; });
+    EXPECT_EQ(senses[a], on_bottom) << cube->cspace.atom_name(a);
+    sensed += senses[a];
+  }
+  EXPECT_EQ(sensed, 9);  // the bottom, its 4 edges and 4 corners
+  // Without F_s the walls would sense: the type 2 box stays eps_s inside them.
+  EXPECT_NEAR(goal_sensed_positions(*cube)[0].max.x(), 0.8 - 2 * margin, 1e-9);
+}
+
+// Type 3 on the inset goal (cube_sensing.yaml): the bottom continues .2 beyond every side of the goal and
+// senses the goal's force there, so every side keeps the type 2 inset: the same box as type 2.
+TEST(GoalSensedPositions, TypeThreeKeepsTheInsetWhereTheGoalFaceContinues) {
+  const auto t = load("cube_sensing");
+  const std::vector<ForceCone> forces = goal_sensed_forces(*t);
+  ASSERT_EQ(forces.size(), 1u);
+  const std::vector<AxisBox> with_force = goal_sensed_positions(*t, forces),
+                             without = goal_sensed_positions(*t);
+  ASSERT_EQ(with_force.size(), 1u);
+  ASSERT_EQ(without.size(), 1u);
+  EXPECT_EQ(with_force[0].min, without[0].min);
+  EXPECT_EQ(with_force[0].max, without[0].max);
 }
 
 // A spring to p sticks on the bottom only within rho = (d + eps_s) t + eps_s of p's projection, d the depth
