@@ -248,11 +248,6 @@ struct SceneLayout {
   std::vector<AxisBox> grown;             // C-space boxes before shrinking by h (C-space form)
 };
 
-// The seam filter's gap allowance (m, sim/seam_filter.h): how far apart the geoms of two environment boxes
-// that abut in the task can be. Shrinking by h leaves 2h between C-space boxes that share a face and were not
-// grown into each other; physical parts are emitted as given, so abutting ones touch.
-double seam_gap_allowance(const SceneLayout& l) { return l.cspace_form ? 2 * l.h * l.s : 0.0; }
-
 // The file's opening comment: units, scale, form and h.
 void write_header(std::ostream& out, const Task& task, const SceneLayout& l) {
   out << "<!-- cmt export-mjcf: task '" << comment_text(task.name) << "'";
@@ -293,8 +288,7 @@ void write_settings(std::ostream& out, const Task& task, const MjcfOptions& opti
 
   if (options.seam_filter_relative > 0)
     out << "  <custom>\n    <numeric name=\"" << kSeamFilterNumeric << "\" data=\""
-        << num(options.seam_filter_relative * l.scale * l.s) << " " << num(seam_gap_allowance(l))
-        << "\"/>\n  </custom>\n";
+        << num(options.seam_filter_relative * l.scale * l.s) << "\"/>\n  </custom>\n";
 
   out << "  <default>\n"
       << "    <geom condim=\"3\" solref=\"" << num(solref) << " 1\" solimp=\"" << num(options.solimp_dmin)

@@ -4,16 +4,14 @@
 // neighbour, overlaps that face by less than it has sunk below the real surface and gets a contact normal
 // along it (a "ghost" contact) that stops it. The filter drops a box-box contact on a face of environment box
 // E when the robot box, moved a little further out of E along the contact normal, still overlaps another
-// environment box that abuts E there (which then blocks that motion as E does: E's face is internal there).
-// A box across a real gap from E does not count, however narrow the gap: the robot can enter it.
+// environment box that R, flush with E's face, would overlap (which then blocks that motion as E does: E's
+// face is internal there). A box across a gap R fits into does not count, however narrow the gap.
 #pragma once
 
 namespace cmt {
 
-// Name of the MJCF custom numeric that switches the filter on for a model; its values are the tolerance tau
-// and the gap allowance (how far apart the geoms of abutting boxes can be: 2h in the C-space form, whose
-// boxes are shrunk by h; 0 in the physical form), both in metres (sim/mjcf_export.h
-// MjcfOptions::seam_filter_relative). Without the second value the allowance is 0.
+// Name of the MJCF custom numeric that switches the filter on for a model; its value is the tolerance tau
+// in metres (sim/mjcf_export.h MjcfOptions::filter_seam_contacts).
 inline constexpr const char* kSeamFilterNumeric = "cmt_seam_filter";
 
 // Replaces MuJoCo's box-box collision function (process-wide, once) with one that calls it and then, for
