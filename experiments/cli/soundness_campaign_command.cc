@@ -38,10 +38,10 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
       ->capture_default_str();
   cmd->add_option(
          "--generator", o->generator,
-         "default, or wide: friction up to 1.5, boxes lifted off the floor, starts near a rim "
-         "(docs/validation.md \"Random-task soundness campaign\"; a campaign resumes only with its own "
-         "generator)")
-      ->check(CLI::IsMember({"default", "wide"}))
+         "default; wide: friction up to 1.5, boxes lifted off the floor, starts near a rim; or slanted: "
+         "ramps (convex parts with sloped tops) and starts on their slopes (docs/validation.md \"Random-task "
+         "soundness campaign\"; a campaign resumes only with its own generator)")
+      ->check(CLI::IsMember({"default", "wide", "slanted"}))
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "rollout threads (0: all cores; results do not depend on it)");
   cmd->add_option("--verifier-budget", o->campaign.verifier_budget,
@@ -66,7 +66,9 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     o->campaign.threads =
         o->threads > 0 ? o->threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     o->campaign.out = o->out;
-    o->campaign.generator = o->generator == "wide" ? CampaignGenerator::kWide : CampaignGenerator::kDefault;
+    o->campaign.generator = o->generator == "wide"      ? CampaignGenerator::kWide
+                            : o->generator == "slanted" ? CampaignGenerator::kSlanted
+                                                        : CampaignGenerator::kDefault;
     o->campaign.minimize = !o->no_minimize;
     if (o->false_alarm_budget > 0)
       o->campaign.false_alarm_check = [budget = o->false_alarm_budget, threads = o->campaign.threads](

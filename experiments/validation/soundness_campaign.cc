@@ -29,6 +29,17 @@ constexpr double kWideMaxFriction = 1.5;
 constexpr double kLiftedBoxChance = 0.3;
 constexpr double kNearRimChance = 0.5;
 constexpr double kRimBand = 0.05;
+// The slanted generator (CampaignGenerator::kSlanted): each obstacle a ramp with probability kRampChance: the
+// obstacle's footprint with its top sloping along x or y from the drawn height down to kRampLowMin-Max of it
+// (never to the floor: the part keeps a thickness the rollouts' scene can erode). A start on a ramp lies on
+// its slope at kSlopeInset-(1 - kSlopeInset) of the way across each side.
+constexpr double kRampChance = 0.5;
+constexpr double kRampLowMin = 0.2, kRampLowMax = 0.9;
+constexpr double kSlopeInset = 0.15;
+// How far a ramp flush with a wall reaches through it, as a fraction of the room's diagonal: above twice the
+// rollouts' cube half size (at most 0.05 x scale, the scale being the diagonal of the C-space's faces).
+constexpr double kRampReach = 0.12;
+constexpr double kFlushRelative = 1e-12;
 constexpr double kMinThetaV = 0.02, kMaxThetaV = 0.3;
 constexpr double kMinEps = 0.01, kMaxEps = 0.2;
 constexpr double kFarOffsetMin = 50, kFarOffsetMax = 3000;
@@ -42,6 +53,7 @@ struct Scene {
   Uncertainty u;
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounds; the floor is z = lo.z
   std::vector<AxisBox> boxes;                 // C-space obstacles standing on the floor
+  std::vector<std::vector<Vec3>> ramps;       // convex C-space obstacles (their vertices)
   std::string start_kind = "point";           // point | segment | polygon
   std::vector<Vec3> start;
   std::vector<std::vector<Vec3>> goal;  // regions: 1 point, or a polygon
@@ -75,9 +87,10 @@ std::string to_yaml(const Scene& s, int index, const std::string& description) {
   y << "uncertainty: {eps_s: " << num(s.u.eps_s) << ", eps_p: " << num(s.u.eps_p)
     << ", theta_v: " << num(s.u.theta_v) << ", theta_f: " << num(s.u.theta_f) << "}\n";
   y << "cspace:";
-  if (s.boxes.empty()) y << " []";
+  if (s.boxes.empty() && s.ramps.empty()) y << " []";
   y << "\n";
   for (const AxisBox& b : s.boxes) y << "  - box: {min: " << vec(b.min) << ", max: " << vec(b.max) << "}\n";
+  for (const auto& r : s.ramps) y << "  - convex: {vertices: " << points(r) << "}\n";
   y << "bounds: {min: " << vec(s.lo) << ", max: " << vec(s.hi) << "}\n";
   y << "start: " << region(s.start_kind, s.start) << "\n";
   y << "goal:\n";
@@ -116,8 +129,81 @@ Vec3 start_centre(Rng& rng, const Vec3& flo, const Vec3& fhi, double z, double r
   return c;
 }
 
+// A ramp: a convex C-space part whose top slopes (the slanted generator).
+struct Ramp {
+  std::vector<Vec3> vertices;  // the floor rectangle, then the top (counter-clockwise)
+  std::vector<Vec3> slope;  // the top over the drawn footprint, inside the bounds: starts and goals lie on it
+};
+
+// Whether a box side at `side` lies on the wall at `wall` (within the rounding of the draws, which place a
+// flush box at lo + (extent - w) + w; the task text keeps 12 digits, so the two are then equal there).
+bool flush(double side, double wall, const Vec3& room_lo, const Vec3& room_hi) {
+  return std::abs(side - wall) <= kFlushRelative * (room_hi - room_lo).norm();
+}
+
+// A ramp over the box's footprint: its top slopes along `axis` from the box's top at the side `high_at_max`
+// names down to `low` above the floor. A side flush with the bounds [room_lo, room_hi] reaches through the
+// wall by kRampReach of the room's diagonal (the top plane continued): the C-space inside the bounds is the
+// same, and the rollouts' scene, which does not grow convex parts into their neighbours and erodes them by
+// its cube of half size h <= 0.05 x scale, keeps the eroded slope under a cube that touches the wall (a ramp
+// that ended at the wall would leave the cube's far half over its eroded end, and the cube would sink).
+// The low end is never flush with a wall (the caller turns such a ramp around), so the top rises through it.
+Ramp make_ramp(const AxisBox& box, int axis, bool high_at_max, double low, const Vec3& room_lo,
+               const Vec3& room_hi) {
+  const double t_high = high_at_max ? box.max[axis] : box.min[axis];
+  const double t_low = high_at_max ? box.min[axis] : box.max[axis];
+  const double drop = (box.max.z() - low) / (t_low - t_high);  // dz per unit along the axis (signed)
+  const auto top = [&](double x, double y) {
+    return Vec3(x, y, box.max.z() - drop * ((axis == 0 ? x : y) - t_high));
+  };
+  const auto rectangle = [&](const Vec3& lo, const Vec3& hi, bool at_top) {
+    if (!at_top)
+      return std::vector<Vec3>{Vec3(lo.x(), lo.y(), lo.z()), Vec3(hi.x(), lo.y(), lo.z()),
+                               Vec3(hi.x(), hi.y(), lo.z()), Vec3(lo.x(), hi.y(), lo.z())};
+    return std::vector<Vec3>{top(lo.x(), lo.y()), top(hi.x(), lo.y()), top(hi.x(), hi.y()),
+                             top(lo.x(), hi.y())};
+  };
+  const double reach = kRampReach * (room_hi - room_lo).norm();
+  Vec3 lo = box.min, hi = box.max;
+  for (int k = 0; k < 2; ++k) {
+    if (flush(box.min[k], room_lo[k], room_lo, room_hi)) lo[k] -= reach;
+    if (flush(box.max[k], room_hi[k], room_lo, room_hi)) hi[k] += reach;
+  }
+  Ramp r;
+  r.vertices = rectangle(lo, hi, false);
+  for (const Vec3& v : rectangle(lo, hi, true)) r.vertices.push_back(v);
+  r.slope = rectangle(box.min, box.max, true);
+  return r;
+}
+
+// A point of a ramp's slope at fractions (u, v) across it (bilinear in its planar quadrilateral).
+Vec3 on_slope(const std::vector<Vec3>& q, double u, double v) {
+  return (1 - v) * ((1 - u) * q[0] + u * q[1]) + v * ((1 - u) * q[3] + u * q[2]);
+}
+
+// A start on a ramp's slope (point, segment or small parallelogram, by `kind` as for flat faces), its
+// fractions within [kSlopeInset, 1 - kSlopeInset]; the goal is then the whole slope.
+void start_on_slope(Rng& rng, Scene& s, const std::vector<Vec3>& r, int kind) {  // r: the slope
+  const double u = uniform(rng, kSlopeInset, 1 - kSlopeInset), v = uniform(rng, kSlopeInset, 1 - kSlopeInset);
+  const double du = std::min({0.1, u - kSlopeInset, 1 - kSlopeInset - u});
+  const double dv = std::min({0.1, v - kSlopeInset, 1 - kSlopeInset - v});
+  if (kind <= 2) {
+    s.start_kind = "point";
+    s.start = {on_slope(r, u, v)};
+  } else if (kind == 3) {
+    s.start_kind = "segment";
+    s.start = {on_slope(r, u - du, v - dv), on_slope(r, u + du, v + dv)};
+  } else {
+    s.start_kind = "polygon";
+    s.start = {on_slope(r, u - du, v - dv), on_slope(r, u + du, v - dv), on_slope(r, u + du, v + dv),
+               on_slope(r, u - du, v + dv)};
+  }
+  s.goal = {r};
+}
+
 Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description) {
   const bool wide = generator == CampaignGenerator::kWide;
+  const bool slanted = generator == CampaignGenerator::kSlanted;
   Scene s;
   const int unit = uniform_index(rng, 3);
   s.units = unit == 0 ? "in" : unit == 1 ? "mm" : "m";
@@ -161,6 +247,25 @@ Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description
     }
     s.boxes.push_back(box);
   }
+  // Slanted: some boxes become ramps (drawn after every box, so the boxes are those of the default draws).
+  std::vector<int> ramp_of(s.boxes.size(), -1);  // per box: its ramp's index, -1 when it stays a box
+  std::vector<std::vector<Vec3>> slopes;
+  if (slanted)
+    for (std::size_t b = 0; b < s.boxes.size(); ++b) {
+      if (uniform01(rng) >= kRampChance) continue;
+      const int axis = uniform_index(rng, 2);
+      bool high_at_max = uniform01(rng) < 0.5;
+      const AxisBox& box = s.boxes[b];
+      // The low end away from the walls (make_ramp): turned around when it would be flush with one.
+      if (high_at_max ? flush(box.min[axis], s.lo[axis], s.lo, s.hi)
+                      : flush(box.max[axis], s.hi[axis], s.lo, s.hi))
+        high_at_max = !high_at_max;
+      const double low = box.min.z() + uniform(rng, kRampLowMin, kRampLowMax) * (box.max.z() - box.min.z());
+      ramp_of[b] = static_cast<int>(s.ramps.size());
+      Ramp r = make_ramp(box, axis, high_at_max, low, s.lo, s.hi);
+      s.ramps.push_back(std::move(r.vertices));
+      slopes.push_back(std::move(r.slope));
+    }
   // The start face: the floor or a box top; a point, a short segment or a small square on it.
   const int face = uniform_index(rng, nboxes + 1);
   const Vec3 flo = face == 0 ? s.lo : s.boxes[face - 1].min;
@@ -191,6 +296,15 @@ Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description
     s.goal = {top_rectangle(flo, fhi, z)};
   else
     s.goal = {{s.start[0]}};
+  if (slanted && face > 0 && ramp_of[static_cast<std::size_t>(face - 1)] >= 0)
+    start_on_slope(rng, s, slopes[static_cast<std::size_t>(ramp_of[static_cast<std::size_t>(face - 1)])],
+                   kind);
+  if (slanted) {  // the ramps replace their boxes
+    std::vector<AxisBox> kept;
+    for (std::size_t b = 0; b < s.boxes.size(); ++b)
+      if (ramp_of[b] < 0) kept.push_back(s.boxes[b]);
+    s.boxes = kept;
+  }
   s.spring = uniform01(rng) < 0.5;
   if (s.spring) {
     s.command = c + Vec3(uniform(rng, -3, 3) * L, uniform(rng, -3, 3) * L, uniform(rng, -2, 0.3) * L);
@@ -204,6 +318,10 @@ Scene draw_scene(Rng& rng, CampaignGenerator generator, std::string* description
     << ", mu " << num(std::round(s.mu * 100) / 100) << ", theta_v "
     << num(std::round(s.u.theta_v * 100) / 100);
   if (wide) d << ", wide: " << lifted << " lifted, " << (near_rim ? "start near a rim" : "start inside");
+  if (slanted) {
+    const bool on_ramp = face > 0 && ramp_of[static_cast<std::size_t>(face - 1)] >= 0;
+    d << ", slanted: " << s.ramps.size() << " ramps" << (on_ramp ? ", start on a slope" : "");
+  }
   *description = d.str();
   return s;
 }
@@ -322,6 +440,11 @@ std::vector<Scene> shrink_candidates(const Scene& s) {
     t.boxes.erase(t.boxes.begin() + static_cast<long>(b));
     out.push_back(t);
   }
+  for (std::size_t r = 0; r < s.ramps.size(); ++r) {
+    Scene t = s;
+    t.ramps.erase(t.ramps.begin() + static_cast<long>(r));
+    out.push_back(t);
+  }
   if (s.start_kind != "point") {
     Scene t = s;
     t.start_kind = "point";
@@ -385,7 +508,7 @@ CampaignRecord record_from_json(const nlohmann::json& j) {
 }  // namespace
 
 const char* campaign_generator_name(CampaignGenerator g) {
-  return g == CampaignGenerator::kWide ? "wide" : "default";
+  return g == CampaignGenerator::kWide ? "wide" : g == CampaignGenerator::kSlanted ? "slanted" : "default";
 }
 
 CampaignTask generate_campaign_task(std::uint64_t seed, int index, CampaignGenerator generator) {

@@ -29,7 +29,9 @@ struct CampaignTask {
 // Which scenes a campaign draws (docs/validation.md "Random-task soundness campaign"). kWide adds what the
 // default leaves out: friction up to 1.5 (mu >= 1, where a face's cone is wider than 45 degrees), boxes
 // lifted off the floor (a tunnel under a C-obstacle, rims over free space) and starts near a face's rim.
-enum class CampaignGenerator { kDefault, kWide };
+// kSlanted makes some obstacles ramps (convex parts whose top slopes: slanted faces, convex and concave edges
+// that are not axis-aligned creases, meshes in the rollouts' scene) and starts on their slopes.
+enum class CampaignGenerator { kDefault, kWide, kSlanted };
 const char* campaign_generator_name(CampaignGenerator g);
 
 // Task `index` of campaign `seed`: the same triple always gives the same text.

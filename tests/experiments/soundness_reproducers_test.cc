@@ -213,6 +213,45 @@ TEST(SoundnessCampaign, WideTasksReachFrictionAboveOneLiftedBoxesAndRims) {
   EXPECT_NE(generate_campaign_task(7, 0, CampaignGenerator::kWide).yaml, generate_campaign_task(7, 0).yaml);
 }
 
+// The slanted generator: seeded, every task loads, ramps (convex parts) occur, and so do starts on a slope (a
+// face whose normal is not along an axis). A ramp side flush with a wall reaches through it by at least
+// 0.1 x the scene scale, twice the largest cube half size of the rollouts' scene, so that the eroded ramp
+// stays under a cube that touches the wall; no ramp ends within that of a wall outside the bounds.
+TEST(SoundnessCampaign, SlantedTasksHaveRampsAndStartsOnSlopes) {
+  int ramps = 0, on_slope = 0;
+  for (int i = 0; i < 60; ++i) {
+    const CampaignTask a = generate_campaign_task(7, i, CampaignGenerator::kSlanted);
+    EXPECT_EQ(a.yaml, generate_campaign_task(7, i, CampaignGenerator::kSlanted).yaml);
+    std::shared_ptr<const LoadedTask> task;
+    ASSERT_NO_THROW(task = load_task_from_string(a.yaml, "campaign")) << a.yaml;
+    const AxisBox room = *task->task.bounds;
+    for (const ConvexPart& part : task->task.cspace) {
+      if (part.shape == ConvexPart::Shape::kBox) continue;
+      ++ramps;
+      for (int k = 0; k < 2; ++k) {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const Vec3& v : part.vertices) lo = std::min(lo, v[k]), hi = std::max(hi, v[k]);
+        const double reach = 0.1 * task->cspace.scale();
+        EXPECT_TRUE(lo > room.min[k] || lo <= room.min[k] - reach) << a.yaml;
+        EXPECT_TRUE(hi < room.max[k] || hi >= room.max[k] + reach) << a.yaml;
+      }
+    }
+    if (a.description.find("start on a slope") != std::string::npos) {
+      ++on_slope;
+      const int atom = task->cspace.nearest_atom(task->task.start.points.front(), task->surface_tolerance());
+      ASSERT_GE(atom, 0) << a.yaml;
+      ASSERT_EQ(task->cspace.atom_kind(atom), AtomKind::kFace) << a.yaml;
+      const Vec3 n = task->cspace.faces()[static_cast<std::size_t>(atom)].normal;
+      EXPECT_LT(n.cwiseAbs().maxCoeff(), 1 - 1e-6) << a.yaml;
+    }
+    EXPECT_NE(a.description.find("slanted: "), std::string::npos) << a.description;
+  }
+  EXPECT_GT(ramps, 0);
+  EXPECT_GT(on_slope, 0);
+  EXPECT_NE(generate_campaign_task(7, 0, CampaignGenerator::kSlanted).yaml,
+            generate_campaign_task(7, 0).yaml);
+}
+
 // The bounded campaign CI runs: 30 generated tasks, 60 extreme rollouts each, no soundness bug. The
 // false-alarm check is a stand-in here (cmt soundness-campaign passes cmt falsify's failure search): it must
 // be asked exactly about the tasks verified unreliable whose stable rollouts all succeeded, each saved as
