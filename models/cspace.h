@@ -83,6 +83,11 @@ class CSpace {
   double distance_to_surface(const Vec3& p) const;
   // Free, on the surface (within `tolerance`), or strictly inside an obstacle / outside the bounds.
   PointClass classify(const Vec3& p, double tolerance) const;
+  // How deep p lies in the solid (the C-obstacles and the outside of the bounds), a lower bound: the largest,
+  // over the convex C-obstacles, of the distance from p to their facets that the bounds do not cover (an
+  // axis facet on or beyond the bounds plane it faces has only solid beyond it); 0 when p is in none. A ball
+  // of that radius about p lies in the solid.
+  double solid_depth(const Vec3& p) const;
   // The lowest-dimensional atom within `tolerance` of p (vertex before edge before face), or -1.
   int nearest_atom(const Vec3& p, double tolerance) const;
   // Distance from p to the closure of one atom.

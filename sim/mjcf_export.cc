@@ -216,6 +216,25 @@ double reference_half_size(const Task& task, double scale, bool cspace_form) {
   return h;
 }
 
+// The thinnest a convex C-space part gets: over its facets, the least distance from the facet's plane to a
+// vertex off it (a box's least extent; a ramp's low end, which its bounding box does not show). A cube of
+// half size h above a quarter of it would erode that end away (the rollouts' robot then sinks where the
+// C-obstacle is, docs/mujoco-scene.md "Convex C-space parts"). Infinity without convex parts.
+double convex_part_thickness(const Task& task, const CSpace& cspace) {
+  const double off = 1e-9 * cspace.scale();  // a vertex this close to a facet's plane lies on the facet
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < task.cspace.size() && i < cspace.obstacles().size(); ++i) {
+    if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
+    const ConvexObstacle& ob = cspace.obstacles()[i];
+    for (std::size_t k = 0; k < ob.normals.size(); ++k)
+      for (const Vec3& v : ob.vertices) {
+        const double d = ob.offsets[k] - ob.normals[k].dot(v);
+        if (d > off) thinnest = std::min(thinnest, d);
+      }
+  }
+  return thinnest;
+}
+
 // Convex C-space parts eroded by the cube of half size *h; a thin or sharp part may need a smaller cube (*h
 // is halved until every part erodes).
 std::vector<std::vector<Vec3>> eroded_cspace_parts(const Task& task, const CSpace& cspace, double tolerance,
@@ -424,6 +443,7 @@ SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
   l.cspace_form = !task.physical();
   l.scale = loaded.cspace.scale();
   l.h = reference_half_size(task, l.scale, l.cspace_form);
+  if (l.cspace_form) l.h = std::min(l.h, 0.25 * convex_part_thickness(task, loaded.cspace));
   if (l.cspace_form) l.eroded = eroded_cspace_parts(task, loaded.cspace, 1e-9 * l.scale, &l.h);
   // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
   // tunnel through at simulated speeds.

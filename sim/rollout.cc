@@ -364,6 +364,18 @@ MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id,
   mo.sim_time = static_cast<double>(step) * dt;
   mo.termination = end.value_or(Termination::kNone);
   mo.end = s.position();
+  // An end deeper than the unstable penetration inside the solid is no outcome of the task's physics: the
+  // scene does not represent the task there (its convex parts are inner approximations, cut back near edges
+  // and corners: docs/mujoco-scene.md "Convex C-space parts"), so the rollout is unstable.
+  if (mo.termination != Termination::kUnstable) {
+    const double depth = scene.task().cspace.solid_depth(mo.end);
+    if (depth > scene.unstable_penetration()) {
+      mo.termination = Termination::kUnstable;
+      s.failure = "ended " + std::to_string(depth) + " inside a C-obstacle, beyond tolerance " +
+                  std::to_string(scene.unstable_penetration()) +
+                  " (the scene does not represent the task there)";
+    }
+  }
   mo.atom = scene.task().cspace.nearest_atom(mo.end, scene.atom_tolerance());
   mo.contact_force = s.force;
   mo.velocity_switches = errors.switches();

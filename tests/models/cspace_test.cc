@@ -198,6 +198,22 @@ TEST(CSpace, AtomIdsAreStable) {
     EXPECT_EQ(a->cspace.edges()[i].a, b->cspace.edges()[i].a);
 }
 
+// The hole's boxes stand on the bounds' floor z = -2 and reach the walls x, y = +-6: those facets have only
+// solid (the outside of the bounds) beyond them, so a point's depth is its distance to the other facets of
+// the box that holds it: the top z = 0 and the hole's side x = 1 for box [1, 6] x [-6, 6] x [-2, 0].
+TEST(CSpace, SolidDepthIgnoresFacetsOnTheBounds) {
+  auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const CSpace& c = task->cspace;
+  EXPECT_DOUBLE_EQ(c.solid_depth(Vec3(3, 3, -1)), 1.0);
+  EXPECT_DOUBLE_EQ(c.solid_depth(Vec3(3, 3, -1.9)), 1.9);    // 0.1 above the floor facet, on the bounds
+  EXPECT_DOUBLE_EQ(c.solid_depth(Vec3(5.9, 3, -1.5)), 1.5);  // 0.1 from the wall facet x = 6
+  // A lower bound: beyond x = 1 at y = 3 lies box [-1, 1] x [1, 6], which the depth does not join.
+  EXPECT_DOUBLE_EQ(c.solid_depth(Vec3(1.25, 3, -1)), 0.25);
+  EXPECT_EQ(c.solid_depth(Vec3(0, 0, -1)), 0.0);  // in the hole
+  EXPECT_EQ(c.solid_depth(Vec3(3, 3, 0)), 0.0);   // on the top
+  EXPECT_EQ(c.solid_depth(Vec3(3, 3, 1)), 0.0);   // above it
+}
+
 TEST(CSpace, ClassifiesPoints) {
   auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
   const CSpace& c = task->cspace;

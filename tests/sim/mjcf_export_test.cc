@@ -534,6 +534,33 @@ TEST(MjcfExport, SeamsAndConcaveEdgesPushBackAlongTheFaceNormal) {
   EXPECT_GT(checked, 50);
 }
 
+// A ramp over [0, 10] x [0, 4] whose top falls from z = 4 at x = 0 to z = 1 at x = 10: its bounding box is 4
+// thick, but its low end is not. The thinnest it gets is the distance from the slope's plane 0.3 x + z = 4
+// to the floor corner (10, y, 0), 1 / sqrt(1.09) (below the low end's height 1), so h is a quarter of that,
+// not a quarter of 4 (the scene's 0.05 x scale = 0.86 would otherwise decide, and eroding the ramp by a
+// cube of half size 0.86 leaves nothing of it where it is under about 1.9 thick).
+TEST(MjcfExport, AConvexPartsThinEndBoundsTheCube) {
+  const auto ramp = load_task_from_string(R"(
+name: ramp
+units: in
+friction: 0.3
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}
+cspace:
+  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, 4], [10, 0, 1], [10, 4, 1], [0, 4, 4]]}
+bounds: {min: [-2, -2, 0], max: [12, 6, 6]}
+start: {point: [5, 2, 2.5]}
+goal: {point: [5, 2, 2.5]}
+motions: {v1: {damper: [0, 0, -1]}}
+strategies: {down: [v1]}
+)",
+                                          "ramp");
+  SceneInfo info;
+  const std::string xml = mjcf_xml(*ramp, {}, &info);
+  EXPECT_NEAR(info.reference_half_size, 0.25 / std::sqrt(1.09), 1e-12);
+  EXPECT_GT(0.05 * ramp->cspace.scale(), 0.8);  // the bound the thin end replaces
+  EXPECT_NO_THROW(MujocoModel::load_xml_string(xml));
+}
+
 TEST(MjcfExport, HalfSizeAndShrinking) {
   const auto hole = load_task_from_string(test::kHoleYaml, "hole.yaml");
   SceneInfo info;
