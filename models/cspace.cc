@@ -94,27 +94,22 @@ PointClass CSpace::classify(const Vec3& p, double tolerance) const {
   return PointClass::kFree;
 }
 
-namespace {
-
-// Whether the outside of the bounds covers the facet n . x <= d: an axis facet (n = +-e_k) on or beyond the
-// bounds plane it faces. A planar task's y slab is not a wall.
-bool covered_by_bounds(const Vec3& n, double d, const AxisBox& bounds, bool planar) {
+bool CSpace::covered_by_bounds(const Vec3& n, double d) const {
+  if (!has_bounds_) return false;
   for (int k = 0; k < 3; ++k) {
-    if (planar && k == 1) continue;
-    if (n == Vec3::Unit(k)) return d >= bounds.max[k];
-    if (n == -Vec3::Unit(k)) return -d <= bounds.min[k];
+    if (planar_ && k == 1) continue;
+    if (n == Vec3::Unit(k)) return d >= bounds_.max[k];
+    if (n == -Vec3::Unit(k)) return -d <= bounds_.min[k];
   }
   return false;
 }
-
-}  // namespace
 
 double CSpace::solid_depth(const Vec3& p) const {
   double deepest = 0;
   for (const ConvexObstacle& ob : obstacles_) {
     double depth = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < ob.normals.size() && depth > 0; ++k)
-      if (!has_bounds_ || !covered_by_bounds(ob.normals[k], ob.offsets[k], bounds_, planar_))
+      if (!covered_by_bounds(ob.normals[k], ob.offsets[k]))
         depth = std::min(depth, ob.offsets[k] - ob.normals[k].dot(p));
     if (std::isfinite(depth)) deepest = std::max(deepest, depth);
   }

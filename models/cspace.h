@@ -83,6 +83,10 @@ class CSpace {
   double distance_to_surface(const Vec3& p) const;
   // Free, on the surface (within `tolerance`), or strictly inside an obstacle / outside the bounds.
   PointClass classify(const Vec3& p, double tolerance) const;
+  // Whether the outside of the bounds covers the facet n . x <= d of a C-obstacle: an axis facet (n = +-e_k)
+  // on or beyond the bounds plane it faces, so that only solid lies beyond it (a planar task's y slab is not
+  // a wall). False without bounds.
+  bool covered_by_bounds(const Vec3& n, double d) const;
   // How deep p lies in the solid (the C-obstacles and the outside of the bounds), a lower bound: the largest,
   // over the convex C-obstacles, of the distance from p to their facets that the bounds do not cover (an
   // axis facet on or beyond the bounds plane it faces has only solid beyond it); 0 when p is in none. A ball

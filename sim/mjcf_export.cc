@@ -56,11 +56,19 @@ AxisBox bounding_box(const ConvexPart& part) {
 
 // The erosion P ⊖ cube_h of a convex C-obstacle P = {x : n_i·x <= d_i}: the cube's support in direction n is
 // h‖n‖₁, so P ⊖ cube_h = {x : n_i·x <= d_i − h‖n_i‖₁}. Its vertices are the feasible intersections of plane
-// triples. Empty when the erosion has no interior (the part is thinner than 2h somewhere).
-std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, double h, double tolerance) {
+// triples. Empty when the erosion has no interior (the part is thinner than 2h somewhere). A facet on the
+// bounds (CSpace::covered_by_bounds: only the solid outside lies beyond it) is first moved out by 2h, as
+// boxes are grown into the outside of the bounds (grow_into_neighbours): the eroded part then reaches the
+// shrunk wall geom, and the cube cannot slip into the 2h slot between them (docs/mujoco-scene.md "Seams").
+std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, const CSpace& cspace, double h,
+                                       double tolerance) {
   const std::size_t n = ob.normals.size();
   std::vector<double> e(n);
-  for (std::size_t i = 0; i < n; ++i) e[i] = ob.offsets[i] - h * ob.normals[i].lpNorm<1>();
+  for (std::size_t i = 0; i < n; ++i) {
+    // A facet the outside of the bounds covers moves out by 2h first (grown into that solid, as boxes are).
+    const double grow = cspace.covered_by_bounds(ob.normals[i], ob.offsets[i]) ? 2 * h : 0.0;
+    e[i] = ob.offsets[i] + grow - h * ob.normals[i].lpNorm<1>();
+  }
   std::vector<Vec3> points;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
@@ -246,7 +254,7 @@ std::vector<std::vector<Vec3>> eroded_cspace_parts(const Task& task, const CSpac
     bool ok = true;
     for (std::size_t i = 0; i < task.cspace.size() && ok; ++i) {
       if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
-      auto points = erode(cspace.obstacles()[i], *h, tolerance);
+      auto points = erode(cspace.obstacles()[i], cspace, *h, tolerance);
       if (points)
         eroded[i] = std::move(*points);
       else

@@ -132,5 +132,37 @@ strategies: {s: [down]}
   EXPECT_NEAR(end.z(), 30, contact) << "stopped above the slot's floor";
 }
 
+// A convex C-space part standing on the bounds' floor (a ramp over [0, 10] x [0, 4], its top falling from 4
+// to 1): its bottom facet lies on the bounds, so the exporter grows it 2h into the outside before eroding,
+// as it grows boxes (docs/mujoco-scene.md "Seams"). A damper along the floor into the ramp's side x = 0
+// (alpha = 73.3 deg from the floor's inward normal, pressing into the side) stops at the side: without the
+// growth the cube, 2h tall, fitted the slot between the floor's wall geom and the eroded ramp and slid under
+// it.
+TEST(SeamFilter, AConvexPartOnTheFloorLeavesNoSlotUnderIt) {
+  const auto ramp = load_task_from_string(R"(
+name: ramp
+units: in
+friction: 0.3
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}
+cspace:
+  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, 4], [10, 0, 1], [10, 4, 1], [0, 4, 4]]}
+bounds: {min: [-4, -2, 0], max: [12, 6, 6]}
+start: {point: [-2, 2, 0]}
+goal: {point: [0, 2, 0]}
+motions: {v1: {damper: [1, 0, -0.3]}}
+strategies: {s: [v1]}
+)",
+                                          "ramp");
+  SimOptions options;
+  options.form = ControllerForm::kImpedance;
+  RolloutRunner runner(RolloutScene::build(ramp, options));
+  const Motion m{"v1", Motion::Kind::kDamper, Vec3(1, 0, -0.3).normalized(), {}};
+  Vec3 end = Vec3::Zero();
+  runner.drive(Vec3(-2, 2, 0), m, 2.0, [&](const StepState& st) { end = st.position; });
+  const double contact = kAtomRelativeTolerance * ramp->cspace.scale();
+  EXPECT_NEAR(end.x(), 0, contact) << "ended at " << end.transpose();
+  EXPECT_NEAR(end.z(), 0, contact) << "ended at " << end.transpose();
+}
+
 }  // namespace
 }  // namespace cmt
