@@ -131,6 +131,17 @@ std::vector<bool> may_sense_forces(const LoadedTask& task, const std::vector<For
   return out;
 }
 
+// Whether goal polygon g lies on face f (in its plane within `tol`) and overlaps it with positive area.
+bool lies_on_face(const Region& g, const Face& f, double tol) {
+  if (std::any_of(g.points.begin(), g.points.end(),
+                  [&](const Vec3& q) { return std::abs(f.normal.dot(q) - f.offset) > tol; }))
+    return false;
+  std::vector<Vec3> overlap = g.points;
+  for (const HalfSpace& h : polygon_sides(f.polygon, f.normal))
+    if (!overlap.empty()) overlap = clip_to_halfspace(overlap, h.normal, h.offset);
+  return overlap.size() >= 3 && std::abs(polygon_area(overlap, f.normal)) > tol * tol;
+}
+
 // A box's extent across the plane x_k = level.
 double area(const AxisBox& box, int k) {
   double a = 1;
@@ -167,14 +178,7 @@ std::vector<PartialGoalFace> partial_goal_faces(const LoadedTask& task, const st
   for (const Region& g : task.task.goal) {
     if (g.kind != Region::Kind::kPolygon) continue;
     for (const Face& f : c.faces()) {
-      if (goal_atom[static_cast<std::size_t>(f.id)]) continue;
-      if (std::any_of(g.points.begin(), g.points.end(),
-                      [&](const Vec3& q) { return std::abs(f.normal.dot(q) - f.offset) > tol; }))
-        continue;
-      std::vector<Vec3> overlap = g.points;
-      for (const HalfSpace& h : polygon_sides(f.polygon, f.normal))
-        if (!overlap.empty()) overlap = clip_to_halfspace(overlap, h.normal, h.offset);
-      if (overlap.size() < 3 || std::abs(polygon_area(overlap, f.normal)) <= tol * tol) continue;
+      if (goal_atom[static_cast<std::size_t>(f.id)] || !lies_on_face(g, f, tol)) continue;
       out.push_back({f.id, polygon_sides(g.points, f.normal)});
     }
   }
@@ -221,14 +225,8 @@ std::vector<ForceCone> goal_sensed_forces(const LoadedTask& task) {
   for (const Region& g : task.task.goal) {
     if (g.kind != Region::Kind::kPolygon) continue;
     for (const Face& f : c.faces()) {
-      if (std::any_of(g.points.begin(), g.points.end(),
-                      [&](const Vec3& q) { return std::abs(f.normal.dot(q) - f.offset) > tol; }))
-        continue;
-      std::vector<Vec3> overlap = g.points;
-      for (const HalfSpace& h : polygon_sides(f.polygon, f.normal))
-        if (!overlap.empty()) overlap = clip_to_halfspace(overlap, h.normal, h.offset);
-      if (overlap.size() < 3 || std::abs(polygon_area(overlap, f.normal)) <= tol * tol) continue;
-      if (!cones[f.id].circular()) continue;  // the task format's cones are circular, at most pi/2 wide
+      if (!lies_on_face(g, f, tol) || !cones[f.id].circular())
+        continue;  // the task format's cones are circular, at most pi/2 wide
       const CircularCone& cone = cones[f.id].generators()[0];
       const ForceCone sensed{cone.axis.normalized(),
                              cone.half_angle + task.task.uncertainty.theta_f + kSensedForceMargin};

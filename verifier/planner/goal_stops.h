@@ -56,9 +56,11 @@ inline constexpr double kSensedSetRelativeMargin = 1e-6;
 // choice that sense the goal only, the largest.
 std::vector<AxisBox> goal_sensed_positions(const LoadedTask& task, const std::vector<ForceCone>& forces = {});
 
-// The margin (radians) by which F_s clears the rim of a goal face's widened friction cone: twice the
-// verifier's kForceContainmentMargin, so that the verifier counts every stop on the face as surely sensed.
-inline constexpr double kSensedForceMargin = 2e-9;
+// The margin (radians) by which F_s clears the rim of a goal face's widened friction cone, so that the
+// verifier counts every stop on the face as surely sensed: above its kForceContainmentMargin plus the
+// rounding of the angle it computes with acos between two unit normals (~1.5e-8 for a dot product one ulp
+// below 1).
+inline constexpr double kSensedForceMargin = 1e-7;
 
 // F_s for a type 3 motion that ends in the goal: per goal polygon on a face of the C-space, the cone about
 // the face's friction-cone axis (the reaction's mean direction) whose half angle is the friction angle plus
