@@ -96,10 +96,13 @@ PointClass CSpace::classify(const Vec3& p, double tolerance) const {
 
 bool CSpace::covered_by_bounds(const Vec3& n, double d) const {
   if (!has_bounds_) return false;
+  // An axis facet's normal is exact (its other coefficients are exact zeros), but its offset is a quotient of
+  // two rounded doubles: a facet on the bounds plane may come out an ulp or two inside it.
+  const double tol = kBoundsPlaneRelativeTolerance * scale_;
   for (int k = 0; k < 3; ++k) {
     if (planar_ && k == 1) continue;
-    if (n == Vec3::Unit(k)) return d >= bounds_.max[k];
-    if (n == -Vec3::Unit(k)) return -d <= bounds_.min[k];
+    if (n == Vec3::Unit(k)) return d >= bounds_.max[k] - tol;
+    if (n == -Vec3::Unit(k)) return -d <= bounds_.min[k] + tol;
   }
   return false;
 }

@@ -57,6 +57,11 @@ struct ConvexObstacle {
 
 enum class PointClass { kFree, kOnSurface, kInsideObstacle };
 
+// How far inside a bounds plane (relative to the scene scale) an axis facet of a C-obstacle still counts as
+// lying on it (CSpace::covered_by_bounds): far above the rounding of a facet's double offset (a few ulps,
+// ~1e-16 relative), far below any feature of a task.
+inline constexpr double kBoundsPlaneRelativeTolerance = 1e-9;
+
 class CSpace {
  public:
   // Builds the C-space of `task` (exact arithmetic). Throws TaskError on degenerate geometry.
@@ -84,8 +89,9 @@ class CSpace {
   // Free, on the surface (within `tolerance`), or strictly inside an obstacle / outside the bounds.
   PointClass classify(const Vec3& p, double tolerance) const;
   // Whether the outside of the bounds covers the facet n . x <= d of a C-obstacle: an axis facet (n = +-e_k)
-  // on or beyond the bounds plane it faces, so that only solid lies beyond it (a planar task's y slab is not
-  // a wall). False without bounds.
+  // on or beyond the bounds plane it faces (within kBoundsPlaneRelativeTolerance x scale, the rounding of
+  // the facet's double offset), so that only solid lies beyond it (a planar task's y slab is not a wall).
+  // False without bounds.
   bool covered_by_bounds(const Vec3& n, double d) const;
   // How deep p lies in the solid (the C-obstacles and the outside of the bounds), a lower bound: the largest,
   // over the convex C-obstacles, of the distance from p to their facets that the bounds do not cover (an

@@ -214,6 +214,40 @@ TEST(CSpace, SolidDepthIgnoresFacetsOnTheBounds) {
   EXPECT_EQ(c.solid_depth(Vec3(3, 3, 1)), 0.0);   // above it
 }
 
+// A generated ramp's floor facet (12-digit coordinates, far from the origin): its double offset is a quotient
+// of rounded numbers and may come out just inside the bounds' floor; it is covered all the same, and a facet
+// a millionth of the scene inside the bounds is not.
+TEST(CSpace, FacetsOnTheBoundsAreCoveredDespiteRounding) {
+  int covered = 0, floors = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double z0 = -49722.3918344 - 0.0137 * i, x0 = 1635.95529095 + 0.71 * i;
+    std::ostringstream yaml;
+    yaml.precision(12);
+    yaml << "name: ramp\nunits: mm\nfriction: 0.3\n"
+         << "uncertainty: {eps_s: 1, eps_p: 1, theta_v: 0.1, theta_f: 0.05}\n"
+         << "cspace:\n  - convex: {vertices: [[" << x0 << ", 38329.5117654, " << z0 << "], [" << x0 + 39.5
+         << ", 38329.5117654, " << z0 << "], [" << x0 + 39.5 << ", 38384.4830096, " << z0 << "], [" << x0
+         << ", 38384.4830096, " << z0 << "], [" << x0 << ", 38329.5117654, " << z0 + 1.9 << "], ["
+         << x0 + 39.5 << ", 38329.5117654, " << z0 + 1.9 << "], [" << x0 + 39.5 << ", 38384.4830096, "
+         << z0 + 7.1 << "], [" << x0 << ", 38384.4830096, " << z0 + 7.1 << "]]}\n"
+         << "bounds: {min: [" << x0 - 40 << ", 38294.9384941, " << z0 << "], max: [" << x0 + 60
+         << ", 38422.6068211, " << z0 + 55 << "]}\n"
+         << "start: {point: [" << x0 - 20 << ", 38350, " << z0 << "]}\n"
+         << "goal: {point: [" << x0 - 20 << ", 38350, " << z0 << "]}\n"
+         << "motions: {m: {damper: [0, 0, -1]}}\nstrategies: {s: [m]}\n";
+    const CSpace c = CSpace::build(parse_task_string(yaml.str(), "ramp.yaml"));
+    for (const ConvexObstacle& ob : c.obstacles())
+      for (std::size_t k = 0; k < ob.normals.size(); ++k)
+        if (ob.normals[k] == -Vec3::UnitZ()) {
+          ++floors;
+          covered += c.covered_by_bounds(ob.normals[k], ob.offsets[k]);
+          EXPECT_FALSE(c.covered_by_bounds(ob.normals[k], ob.offsets[k] - 1e-6 * c.scale()));
+        }
+  }
+  EXPECT_EQ(floors, 200);
+  EXPECT_EQ(covered, 200);
+}
+
 TEST(CSpace, ClassifiesPoints) {
   auto task = load_task_from_string(test::kHoleYaml, "hole.yaml");
   const CSpace& c = task->cspace;
