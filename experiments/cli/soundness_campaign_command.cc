@@ -1,9 +1,10 @@
 // `cmt soundness-campaign --tasks N [--first I] --seed S [-n ROLLOUTS] [--threads T] [--verifier-budget SEC]
 // [--no-minimize] [--false-alarm-budget N] [--out DIR] --json`: the random-task soundness campaign
 // (experiments/validation/soundness_campaign.h), with `cmt falsify`'s failure search as its false-alarm
-// check. Exit 0 when every task was sound, 1 when a soundness bug was found (saved under DIR/bugs/ with its
-// replay command), 2 on bad usage. Rerunning with the same seed and rollout count resumes from
-// DIR/results.jsonl.
+// check. Exit 0 when no soundness bug was found, 1 when one was (saved under DIR/bugs/ with its replay
+// command), 2 on bad usage. A task with more than kInconclusiveUnstableShare of its rollouts unstable and no
+// bug is counted inconclusive (saved under DIR/inconclusive/), as a timed-out one is counted, not scored.
+// Rerunning with the same seed and rollout count resumes from DIR/results.jsonl.
 #include <iostream>
 #include <thread>
 
@@ -88,7 +89,10 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
       };
     const CampaignSummary s = run_soundness_campaign(o->campaign, [](const CampaignRecord& r) {
       std::cerr << "task " << r.index << ": " << r.status << " (" << r.description << ")";
-      if (r.status == "bug") std::cerr << " -> " << r.saved << "\n    replay: " << r.replay;
+      if (r.status == "bug" || r.status == "inconclusive")
+        std::cerr << " -> " << r.saved << "\n    replay: " << r.replay;
+      if (r.status == "inconclusive")
+        std::cerr << "\n    " << r.unstable << " of " << r.rollouts << " rollouts unstable";
       if (r.false_alarm)
         std::cerr << (*r.false_alarm
                           ? "; unreliable, no failure found in " + std::to_string(r.check.rollouts) +
@@ -98,10 +102,15 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     });
     nlohmann::json bugs = nlohmann::json::array();
     for (const CampaignRecord& r : s.bug_records) bugs.push_back(campaign_record_json(r));
+    nlohmann::json inconclusive = nlohmann::json::array();
+    for (const CampaignRecord& r : s.inconclusive_records) inconclusive.push_back(campaign_record_json(r));
     const nlohmann::json j = {{"tasks", s.run},
                               {"resumed", s.resumed},
                               {"sound", s.sound},
                               {"bugs", s.bugs},
+                              {"inconclusive", s.inconclusive},
+                              {"scored_rollouts", s.rollouts},
+                              {"unstable_rollouts", s.unstable},
                               {"invalid", s.invalid},
                               {"timed_out", s.timed_out},
                               {"reliable", s.reliable},
@@ -112,15 +121,18 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
                               {"generator", o->generator},
                               {"rollouts", o->campaign.rollouts},
                               {"soundness_bugs", bugs},
+                              {"inconclusive_tasks", inconclusive},
                               {"results", (o->campaign.out / "results.jsonl").string()}};
     if (state.json)
       print_json(j);
     else
-      std::cout << s.run << " tasks: " << s.sound << " sound, " << s.bugs << " soundness bugs, " << s.invalid
-                << " invalid, " << s.timed_out << " timed out (" << s.reliable << " verified reliable); "
-                << s.candidates << " verified unreliable with every rollout successful, of which "
-                << s.false_alarms << " false alarms and " << s.failures_found
-                << " failures found by the search\n";
+      std::cout << s.run << " tasks: " << s.sound << " sound, " << s.bugs << " soundness bugs, "
+                << s.inconclusive << " inconclusive (over " << kInconclusiveUnstableShare * 100
+                << " % of their rollouts unstable), " << s.invalid << " invalid, " << s.timed_out
+                << " timed out (" << s.reliable << " verified reliable; " << s.unstable << " of "
+                << s.rollouts << " scored rollouts unstable); " << s.candidates
+                << " verified unreliable with every rollout successful, of which " << s.false_alarms
+                << " false alarms and " << s.failures_found << " failures found by the search\n";
     state.exit_status = s.bugs > 0 ? kExitFailureFound : kExitSuccess;
   });
 }

@@ -426,7 +426,7 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
   rec.soundness_bug = j["soundness_bug"];
   rec.max_distance_outside = j["max_distance_outside"];
   rec.verify_seconds = j["verify_seconds"];
-  rec.status = rec.outside > 0 || rec.soundness_bug ? "bug" : "sound";
+  rec.status = campaign_status(rec.rollouts, rec.unstable, rec.outside, rec.soundness_bug);
   rec.replay = "cmt validate TASK --strategy s -n " + std::to_string(options.rollouts) + " --seed " +
                std::to_string(j["seed"].get<std::uint64_t>()) + " --mode extreme";
   return rec;
@@ -497,6 +497,8 @@ CampaignRecord record_from_json(const nlohmann::json& j) {
   r.reliable = j.value("reliable", false);
   r.saved = j.value("saved", "");
   r.replay = j.value("replay", "");
+  r.rollouts = j.value("rollouts", 0);
+  r.unstable = j.value("unstable", 0);
   r.outside = j.value("outside", 0);
   r.max_distance_outside = j.value("max_distance_outside", 0.0);
   r.candidate = j.value("false_alarm_candidate", false);
@@ -506,6 +508,12 @@ CampaignRecord record_from_json(const nlohmann::json& j) {
 }
 
 }  // namespace
+
+std::string campaign_status(int rollouts, int unstable, int outside, bool soundness_bug) {
+  if (outside > 0 || soundness_bug) return "bug";
+  if (unstable > kInconclusiveUnstableShare * rollouts) return "inconclusive";
+  return "sound";
+}
 
 const char* campaign_generator_name(CampaignGenerator g) {
   return g == CampaignGenerator::kWide ? "wide" : g == CampaignGenerator::kSlanted ? "slanted" : "default";
@@ -566,8 +574,10 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
         if (rec.status == "sound" && !rec.reliable && rec.rollouts > rec.unstable &&
             rec.successes == rec.rollouts - rec.unstable)
           check_false_alarm(g.task.yaml, options, i, &rec);
-        if (rec.status == "bug") {
-          const std::filesystem::path file = options.out / "bugs" / ("task-" + std::to_string(i) + ".yaml");
+        if (rec.status == "bug" || rec.status == "inconclusive") {
+          const std::filesystem::path folder = options.out / (rec.status == "bug" ? "bugs" : "inconclusive");
+          std::filesystem::create_directories(folder);
+          const std::filesystem::path file = folder / ("task-" + std::to_string(i) + ".yaml");
           std::ofstream(file) << to_yaml(scene, i, g.task.description);
           rec.saved = file.string();
           const std::size_t at = rec.replay.find("TASK");
@@ -589,6 +599,14 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
     if (rec.status == "bug") {
       ++sum.bugs;
       sum.bug_records.push_back(rec);
+    }
+    if (rec.status == "inconclusive") {
+      ++sum.inconclusive;
+      sum.inconclusive_records.push_back(rec);
+    }
+    if (rec.status == "sound" || rec.status == "bug" || rec.status == "inconclusive") {
+      sum.rollouts += rec.rollouts;
+      sum.unstable += rec.unstable;
     }
     if (rec.reliable) ++sum.reliable;
     sum.candidates += rec.candidate;

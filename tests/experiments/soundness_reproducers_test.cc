@@ -252,6 +252,18 @@ TEST(SoundnessCampaign, SlantedTasksHaveRampsAndStartsOnSlopes) {
             generate_campaign_task(7, 0).yaml);
 }
 
+// A task is inconclusive, not sound, when more than a tenth of its rollouts are unstable (the scene did not
+// represent the task for them); ends outside the prediction are a bug whatever the share.
+TEST(SoundnessCampaign, ManyUnstableRolloutsMakeATaskInconclusive) {
+  EXPECT_EQ(campaign_status(150, 0, 0, false), "sound");
+  EXPECT_EQ(campaign_status(150, 15, 0, false), "sound");  // exactly a tenth
+  EXPECT_EQ(campaign_status(150, 16, 0, false), "inconclusive");
+  EXPECT_EQ(campaign_status(150, 146, 0, false), "inconclusive");
+  EXPECT_EQ(campaign_status(150, 146, 1, false), "bug");
+  EXPECT_EQ(campaign_status(150, 0, 0, true), "bug");
+  EXPECT_EQ(campaign_status(150, 20, 0, true), "bug");
+}
+
 // The bounded campaign CI runs: 30 generated tasks, 60 extreme rollouts each, no soundness bug. The
 // false-alarm check is a stand-in here (cmt soundness-campaign passes cmt falsify's failure search): it must
 // be asked exactly about the tasks verified unreliable whose stable rollouts all succeeded, each saved as
@@ -294,6 +306,21 @@ TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
     EXPECT_EQ(r.check.rollouts, 7);
   }
   EXPECT_GE(candidates, 1);
+  long rollouts = 0, unstable = 0;
+  int inconclusive = 0;
+  for (const CampaignRecord& r : records) {
+    if (r.status != "sound" && r.status != "bug" && r.status != "inconclusive") continue;
+    rollouts += r.rollouts;
+    unstable += r.unstable;
+    EXPECT_EQ(r.status, campaign_status(r.rollouts, r.unstable, r.outside, r.soundness_bug)) << r.index;
+    if (r.status != "inconclusive") continue;
+    ++inconclusive;
+    EXPECT_EQ(r.saved, (o.out / "inconclusive" / ("task-" + std::to_string(r.index) + ".yaml")).string());
+    EXPECT_TRUE(std::filesystem::exists(r.saved)) << r.index;
+  }
+  EXPECT_EQ(s.rollouts, rollouts);
+  EXPECT_EQ(s.unstable, unstable);
+  EXPECT_EQ(s.inconclusive, inconclusive);
   EXPECT_EQ(static_cast<int>(asked.size()), candidates);
   EXPECT_EQ(s.candidates, candidates);
   EXPECT_EQ(s.false_alarms + s.failures_found, candidates);
@@ -309,6 +336,8 @@ TEST(SoundnessCampaign, ThirtyTasksWithoutASoundnessBug) {
   EXPECT_EQ(resumed.candidates, records[28].candidate + records[29].candidate);
   EXPECT_EQ(resumed.false_alarms, (records[28].false_alarm && *records[28].false_alarm) +
                                       (records[29].false_alarm && *records[29].false_alarm));
+  EXPECT_EQ(resumed.rollouts, records[28].rollouts + records[29].rollouts);
+  EXPECT_EQ(resumed.unstable, records[28].unstable + records[29].unstable);
 
   // In a new folder, --first 29 runs task 29 alone, with the same outcome as in the whole campaign.
   CampaignOptions last = tail;
