@@ -62,6 +62,15 @@ enum class PointClass { kFree, kOnSurface, kInsideObstacle };
 // ~1e-16 relative), far below any feature of a task.
 inline constexpr double kBoundsPlaneRelativeTolerance = 1e-9;
 
+// Physical form: C-obstacle vertex coordinates (exact differences o - r of environment and robot coordinates)
+// and bounds coordinates within this fraction of the parts' extent of each other along an axis are taken as
+// one of their values (CSpace::build; a coordinate no other comes near is kept). Differences that are equal
+// in the task (adjacent boxes, a part flush with another or with the bounds) come out a few ulps of the
+// largest coordinate apart when the task's decimal coordinates are rounded to doubles far from the origin
+// (1e4 mm: ~1e-12 mm), and the exact construction would build sliver faces between the planes; every feature
+// of a task is far wider than 1e-9 of its extent.
+inline constexpr double kCoincidentCoordinateRelativeTolerance = 1e-9;
+
 class CSpace {
  public:
   // Builds the C-space of `task` (exact arithmetic). Throws TaskError on degenerate geometry.

@@ -300,15 +300,20 @@ class CSpaceBuilder {
   void make_obstacles() {
     const std::string& file = task_.source_file;
     if (task_.physical()) {
+      std::vector<std::vector<Point3>> diffs;
       for (std::size_t i = 0; i < task_.robot.size(); ++i)
         for (std::size_t j = 0; j < task_.environment.size(); ++j) {
           std::vector<Point3> diff;
           for (const Vec3& o : task_.environment[j].vertices)
             for (const Vec3& r : task_.robot[i].vertices)
               diff.push_back(to_exact(o) + (CGAL::ORIGIN - to_exact(r)));
-          obstacles_.push_back(make_obstacle(diff, task_.environment[j].friction,
-                                             task_.robot[i].key + " x " + task_.environment[j].key, file));
+          diffs.push_back(std::move(diff));
         }
+      snap_coincident_coordinates(&diffs);
+      for (std::size_t i = 0, k = 0; i < task_.robot.size(); ++i)
+        for (std::size_t j = 0; j < task_.environment.size(); ++j, ++k)
+          obstacles_.push_back(make_obstacle(diffs[k], task_.environment[j].friction,
+                                             task_.robot[i].key + " x " + task_.environment[j].key, file));
     } else {
       for (const ConvexPart& part : task_.cspace) {
         std::vector<Point3> pts;
@@ -331,6 +336,58 @@ class CSpaceBuilder {
       out_.obstacles_.push_back(std::move(c));
     }
     drop_repeated_obstacles();
+  }
+
+  // Physical form: along each axis, the C-obstacle vertex coordinates and the bounds planes that lie within
+  // kCoincidentCoordinateRelativeTolerance x extent of each other (chained in sorted order) become one value,
+  // the bounds plane's where one is among them (the bounds stay as given), else the least of them, kept
+  // exact. A coordinate no other comes near keeps its exact value. See
+  // kCoincidentCoordinateRelativeTolerance.
+  void snap_coincident_coordinates(std::vector<std::vector<Point3>>* diffs) const {
+    struct Entry {
+      double approx;
+      FT exact;
+      bool wall;
+      FT* slot;  // the coordinate it comes from (null for a bounds plane)
+    };
+    std::vector<std::array<FT, 3>> coords;
+    for (const std::vector<Point3>& d : *diffs)
+      for (const Point3& p : d) coords.push_back({p.x(), p.y(), p.z()});
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const auto& c : coords)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], CGAL::to_double(c[a]));
+        hi[a] = std::max(hi[a], CGAL::to_double(c[a]));
+      }
+    if (task_.bounds) {
+      lo = lo.cwiseMin(task_.bounds->min);
+      hi = hi.cwiseMax(task_.bounds->max);
+    }
+    const double tol = kCoincidentCoordinateRelativeTolerance * (hi - lo).norm();
+    for (int a = 0; a < 3; ++a) {
+      std::vector<Entry> v;
+      for (auto& c : coords) v.push_back({CGAL::to_double(c[a]), c[a], false, &c[a]});
+      if (task_.bounds)
+        for (const double w : {task_.bounds->min[a], task_.bounds->max[a]})
+          v.push_back({w, FT(w), true, nullptr});
+      std::sort(v.begin(), v.end(), [](const Entry& x, const Entry& y) { return x.exact < y.exact; });
+      for (std::size_t b = 0; b < v.size();) {
+        std::size_t e = b + 1;
+        while (e < v.size() && v[e].approx - v[e - 1].approx <= tol) ++e;
+        FT value = v[b].exact;  // the least
+        for (std::size_t k = b; k < e; ++k)
+          if (v[k].wall) value = v[k].exact;
+        for (std::size_t k = b; k < e; ++k)
+          if (v[k].slot && *v[k].slot != value) *v[k].slot = value;
+        b = e;
+      }
+    }
+    std::size_t k = 0;
+    for (std::vector<Point3>& d : *diffs)
+      for (Point3& p : d) {
+        const auto& c = coords[k++];
+        p = Point3(c[0], c[1], c[2]);
+      }
   }
 
   // An obstacle repeated exactly (the same friction and vertex set, as when a file lists a part twice) adds

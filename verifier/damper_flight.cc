@@ -20,6 +20,8 @@
 #include <numbers>
 #include <optional>
 
+#include "verifier/internal/frame.h"
+
 namespace cmt::face_geometry {
 namespace {
 
@@ -218,14 +220,14 @@ Points2 section_exact(const std::vector<Point3>& x, const std::vector<Vec3>& s,
 FlightCone flight_cone(const Vec3& v_in, double theta_v, double scale) {
   FlightCone cone;
   const Vec3 v = v_in.normalized();
-  const Vec3 e1 = (std::abs(v.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(v).normalized();
-  const Vec3 e2 = v.cross(e1);
+  Vec3 e1, e2;
+  plane_frame(v, &e1, &e2);  // turns with the task: the fan of rays is the turned task's
   const double radius = std::tan(theta_v + kFlightAngleSlack) / std::cos(std::numbers::pi / kFlightConeRays);
   for (int k = 0; k < kFlightConeRays; ++k) {
     const double a = 2 * std::numbers::pi * k / kFlightConeRays;
     cone.rays.push_back(v + radius * (std::cos(a) * e1 + std::sin(a) * e2));
   }
-  cone.far = 2 * scale + 1;
+  cone.far = 2 * scale;  // relative to the scene: the same cone in every unit
   return cone;
 }
 

@@ -41,7 +41,7 @@ Sweep face_sweep(const Face& f, const Vec3& v, double theta_v, double scale) {
   out.b_minus = std::cos(alpha) * axis - std::sin(alpha) * side;
   // Any in-face displacement (length <= scale) in W is a combination of b_plus, b_minus with coefficients
   // summing to <= scale / cos(alpha).
-  out.far = 2 * scale / std::cos(alpha) + 1;
+  out.far = 2 * scale / std::cos(alpha);
   return out;
 }
 

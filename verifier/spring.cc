@@ -8,6 +8,7 @@
 #include "models/friction_cone.h"
 #include "verifier/atom_cone.h"
 #include "verifier/convex_polygon.h"
+#include "verifier/internal/frame.h"
 #include "verifier/unique_stick.h"
 
 namespace cmt {
@@ -16,13 +17,6 @@ namespace {
 constexpr double kHalfPi = std::numbers::pi / 2;
 // Sides of the polygons that approximate sticking disks on a face.
 constexpr int kDiskPolygonSides = 64;
-
-// Unit vectors u, w spanning the plane of a face.
-void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
-  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  *u = n.cross(helper).normalized();
-  *w = n.cross(*u);
-}
 
 std::vector<Vec3> negated(const std::vector<Vec3>& v) {
   std::vector<Vec3> out;
@@ -34,7 +28,7 @@ std::vector<Vec3> negated(const std::vector<Vec3>& v) {
 // else inscribed.
 std::vector<Vec3> disk_polygon(const Vec3& center, const Vec3& n, double r, bool outer) {
   Vec3 u, w;
-  face_frame(n, &u, &w);
+  plane_frame(n, &u, &w);
   const double R = outer ? r / std::cos(std::numbers::pi / kDiskPolygonSides) * (1 + 1e-12) : r;
   std::vector<Vec3> out;
   for (int k = 0; k < kDiskPolygonSides; ++k) {
@@ -70,7 +64,7 @@ void add_eroded_cone(const Vec3& x, const CircularCone& cone, double eps_s, Poly
     return;
   }
   Vec3 e1, e2;
-  face_frame(a, &e1, &e2);
+  plane_frame(a, &e1, &e2);
   auto rim = [&](int k) {
     const double t = 2 * std::numbers::pi * k / kDiskPolygonSides;
     return Vec3(std::cos(cone.half_angle) * a +

@@ -98,16 +98,10 @@ std::vector<InexactPoint> merged_sum_points(const std::vector<InexactPoint>& a,
 
 }  // namespace
 
-void face_frame(const Vec3& n, Vec3* u, Vec3* w) {
-  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  *u = n.cross(helper).normalized();
-  *w = n.cross(*u);
-}
-
 // Chart offsets of a polygon circumscribing the disk of radius r in the plane with normal n.
 std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r) {
   Vec3 u, w;
-  face_frame(n, &u, &w);
+  plane_frame(n, &u, &w);
   const double R = r / std::cos(kPi / kSpringDiskSides) * (1 + kSpringRelativeSlack);
   std::vector<Vector2> out;
   for (int k = 0; k < kSpringDiskSides; ++k) {
@@ -264,7 +258,7 @@ Points2 chart_disk(const ReachedSet::Impl& g, int fi, const Vec3& center, double
   const Face& face = g.cspace->faces()[fi];
   if (outer) return minkowski_outward({chart.project(center)}, disk_offsets(chart, face.normal, r));
   Vec3 u, w;
-  face_frame(face.normal, &u, &w);
+  plane_frame(face.normal, &u, &w);
   // Inscribed, pulled in by the slack: the chart image of a polygon inside the disk.
   const double R = r * (1 - 1e3 * kSpringRelativeSlack);
   Points2 pts;

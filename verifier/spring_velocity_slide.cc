@@ -411,7 +411,7 @@ ChartRegion velocity_slide(const ReachedSet::Impl& g, int fi, const Points2& par
   const double rho = 2 * m.u.eps_s, cut_margin = kSlack * g.cspace->scale();
   if (m.u.eps_s > 0 && distance_in_plane(poly, face.normal, center) <= rho) {
     Vec3 e1, e2;
-    face_frame(face.normal, &e1, &e2);
+    plane_frame(face.normal, &e1, &e2);
     for (const Vec3& dir : {e1, e2}) {
       std::vector<std::vector<Vec3>> next;
       for (const std::vector<Vec3>& part : parts) {

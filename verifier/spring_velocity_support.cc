@@ -84,7 +84,25 @@ constexpr double kLambdaWarmWidth = 1e-2;
 // is convex; golden-section steps then shrink it. A support bound that is the minimum of two bounds (the
 // spiral's) is not convex everywhere, and then this finds a local minimum. Every value is an f(lambda), so
 // the result is as sound as any single evaluation; the search only sets how tight it is.
-double minimize_over_lambda(const std::function<double(double)>& f, double* guess) {
+// A lower bound of the minimum over [a, b] of a convex f sampled at a < x1 < x2 < b: beyond each sample the
+// chords through its neighbours, extended, lie below f (on [a, x1] and [x2, b] the chord x1 x2; on [x1, x2]
+// the greater of the chords a x1 and x2 b, least where they cross or at an end).
+double convexity_lower_bound(double a, double fa, double x1, double f1, double x2, double f2, double b,
+                             double fb) {
+  const double s12 = (f2 - f1) / (x2 - x1);
+  const double outer = std::min({f1 - s12 * (x1 - a), f2 + s12 * (b - x2), f1, f2});
+  const double sl = x1 > a ? (f1 - fa) / (x1 - a) : 0, sr = b > x2 ? (fb - f2) / (b - x2) : 0;
+  const auto left = [&](double x) { return f1 + sl * (x - x1); };   // chord a x1, extended right
+  const auto right = [&](double x) { return f2 + sr * (x - x2); };  // chord x2 b, extended left
+  double inner = std::min(std::max(left(x1), right(x1)), std::max(left(x2), right(x2)));
+  if (sl != sr) {
+    const double x = (f2 - sr * x2 - f1 + sl * x1) / (sl - sr);
+    if (x > x1 && x < x2) inner = std::min(inner, left(x));
+  }
+  return std::min(outer, inner);
+}
+
+double minimize_over_lambda(const std::function<double(double)>& f, double* guess, double value_tolerance) {
   const double width = kLambdaWarmWidth * (1 + std::abs(*guess));
   double mid = std::clamp(*guess, -kLambdaRange, kLambdaRange);
   double lo = std::max(-kLambdaRange, mid - width), hi = std::min(kLambdaRange, mid + width);
@@ -102,13 +120,16 @@ double minimize_over_lambda(const std::function<double(double)>& f, double* gues
   double best = std::min({f_lo, f_mid, f_hi});
   *guess = best == f_mid ? mid : (best == f_lo ? lo : hi);
   const double r = (std::sqrt(5.0) - 1) / 2;
-  double a = lo, b = hi;
+  double a = lo, b = hi, fa = f_lo, fb = f_hi;
   double x1 = b - r * (b - a), x2 = a + r * (b - a), f1 = f(x1), f2 = f(x2);
   while (b - a > kLambdaResolution) {
+    if (value_tolerance > 0 &&
+        std::min({best, f1, f2}) - convexity_lower_bound(a, fa, x1, f1, x2, f2, b, fb) <= value_tolerance)
+      break;
     if (f1 <= f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = f(x1);
+      b = x2, fb = f2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = f(x1);
     } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = f(x2);
+      a = x1, fa = f1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = f(x2);
     }
   }
   for (const auto& [x, fx] : {std::pair{x1, f1}, std::pair{x2, f2}})
@@ -135,7 +156,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   for (const Support& h : sets)
     if (h(n) < c - margin || -h(-n) > c + margin) return {};  // a set lies on one side of the plane
   Vec3 e1, e2;
-  face_frame(n, &e1, &e2);
+  plane_frame(n, &e1, &e2);
   const Vec3 origin = c * n;
   // The starting square holds the whole face (the section is clipped to the face at the end): centred on the
   // face's vertex centroid, half-size above the scene's diameter (every face point lies within `scale` of
@@ -158,7 +179,7 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
         clip_poly(poly, cs, sn, f(0) + margin * (1 + std::abs(f(0))));
         continue;
       }
-      const double best = minimize_over_lambda(f, &guess);
+      const double best = minimize_over_lambda(f, &guess, margin);  // within a margin of the least bound
       clip_poly(poly, cs, sn, best + margin * (1 + std::abs(best)));
     }
   }

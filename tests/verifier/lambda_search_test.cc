@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "verifier/internal/spring_velocity.h"
@@ -53,6 +54,35 @@ TEST(LambdaSearch, AWarmStartNeedsFewerEvaluations) {
   EXPECT_NEAR(cold, 3.2, 1e-6);
   EXPECT_NEAR(warm, 3.2, 1e-6);
   EXPECT_LT(calls, cold_calls * 2 / 3) << calls << " vs " << cold_calls;
+}
+
+// With a value tolerance the search stops once convexity bounds the minimum to within it: the value returned
+// is a value of f within the tolerance of the least, found in fewer evaluations, on smooth minima and kinks.
+TEST(LambdaSearch, AValueToleranceStopsWithinItOfTheMinimum) {
+  const std::vector<std::function<double(double)>> functions = {
+      [](double x) { return std::hypot(x - 3.2, 1.0); },                       // smooth, minimum 1
+      [](double x) { return 1 + std::abs(x + 0.7) + 1e-3 * x * x - 4.9e-4; },  // a kink at -0.7
+      [](double x) { return std::max(1 - x, 0.5 * x - 0.5) + 0.5; }};          // two lines: .5 at x = 1
+  const std::vector<double> least = {1.0, 1 + 1e-3 * 0.49 - 4.9e-4, 0.5};
+  for (std::size_t k = 0; k < functions.size(); ++k) {
+    for (const double tolerance : {1e-3, 1e-9}) {
+      int calls = 0;
+      const auto f = [&](double x) {
+        ++calls;
+        return functions[k](x);
+      };
+      double exact_guess = 0, guess = 0;
+      const double exact = minimize_over_lambda(f, &exact_guess);
+      const int exact_calls = calls;
+      calls = 0;
+      const double stopped = minimize_over_lambda(f, &guess, tolerance);
+      EXPECT_EQ(stopped, functions[k](guess)) << k;  // a value of f
+      EXPECT_GE(stopped, least[k] - 1e-12) << k;
+      EXPECT_LE(stopped, least[k] + tolerance) << k << " tolerance " << tolerance;
+      EXPECT_NEAR(exact, least[k], 1e-9) << k;
+      EXPECT_LT(calls, exact_calls) << k << " tolerance " << tolerance;
+    }
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "verifier/internal/damper_flight.h"
+#include "verifier/internal/frame.h"
 
 namespace cmt::face_geometry {
 
@@ -59,9 +60,6 @@ double edge_either_way_halfwidth(const Edge& e, const Vec3& p, const Uncertainty
 // everywhere.
 double edge_must_leave_halfwidth(const CSpace& cspace, const Edge& e, double tp, const Vec3& p,
                                  const Uncertainty& u, double margin);
-
-// A right-handed orthonormal frame (u, w) of the plane with unit normal n.
-void face_frame(const Vec3& n, Vec3* u, Vec3* w);
 
 // Chart offsets of the kSpringDiskSides-gon circumscribing the disk of radius r in the plane with normal n.
 std::vector<Vector2> disk_offsets(const FaceChart& chart, const Vec3& n, double r);

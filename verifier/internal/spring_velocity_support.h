@@ -31,8 +31,11 @@ using Support = std::function<double(const Vec3&)>;
 double angle_between(const Vec3& a, const Vec3& b);
 
 // The support bounds' search over lambda (support_section): the least value found of f on [−1e3, 1e3], from a
-// bracket about *guess, which returns the minimiser found.
-double minimize_over_lambda(const std::function<double(double)>& f, double* guess);
+// bracket about *guess, which returns the minimiser found. With value_tolerance > 0 the search also stops
+// once the values found bound the minimum of a convex f to within it (convexity_gap); every returned value is
+// an f(lambda), so a stop only sets how tight the bound is, never whether it is sound.
+double minimize_over_lambda(const std::function<double(double)>& f, double* guess,
+                            double value_tolerance = 0);
 
 // Keeps the part of the planar convex polygon `poly` (3-D points) where n . x <= c (Sutherland-Hodgman, in
 // doubles).
