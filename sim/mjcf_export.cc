@@ -60,32 +60,47 @@ AxisBox bounding_box(const ConvexPart& part) {
 // bounds (CSpace::covered_by_bounds: only the solid outside lies beyond it) is first moved out by 2h, as
 // boxes are grown into the outside of the bounds (grow_into_neighbours): the eroded part then reaches the
 // shrunk wall geom, and the cube cannot slip into the 2h slot between them (docs/mujoco-scene.md "Seams").
-std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, const CSpace& cspace, double h,
-                                       double tolerance) {
-  const std::size_t n = ob.normals.size();
-  std::vector<double> e(n);
-  for (std::size_t i = 0; i < n; ++i) {
+ErodedPart eroded_part(const ConvexObstacle& ob, const CSpace& cspace, double h) {
+  ErodedPart out;
+  out.normals = ob.normals;
+  for (std::size_t i = 0; i < ob.normals.size(); ++i) {
     // A facet the outside of the bounds covers moves out by 2h first (grown into that solid, as boxes are).
     const double grow = cspace.covered_by_bounds(ob.normals[i], ob.offsets[i]) ? 2 * h : 0.0;
-    e[i] = ob.offsets[i] + grow - h * ob.normals[i].lpNorm<1>();
+    out.offsets.push_back(ob.offsets[i] + grow - h * ob.normals[i].lpNorm<1>());
   }
+  return out;
+}
+
+// The vertices of {x : n_i . x <= e_i} (unit normals): the feasible intersections of plane triples, each
+// within `tolerance` of every half-space, without repeats closer than `tolerance`.
+std::vector<Vec3> polytope_vertices(const std::vector<Vec3>& normals, const std::vector<double>& e,
+                                    double tolerance) {
+  const std::size_t n = normals.size();
   std::vector<Vec3> points;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k) {
         Eigen::Matrix3d a;
-        a.row(0) = ob.normals[i];
-        a.row(1) = ob.normals[j];
-        a.row(2) = ob.normals[k];
+        a.row(0) = normals[i];
+        a.row(1) = normals[j];
+        a.row(2) = normals[k];
         if (std::abs(a.determinant()) < 1e-9) continue;  // unit normals: near-parallel planes, no vertex
         const Vec3 x = a.partialPivLu().solve(Vec3(e[i], e[j], e[k]));
         bool feasible = true;
-        for (std::size_t m = 0; m < n && feasible; ++m) feasible = ob.normals[m].dot(x) <= e[m] + tolerance;
+        for (std::size_t m = 0; m < n && feasible; ++m) feasible = normals[m].dot(x) <= e[m] + tolerance;
         if (!feasible) continue;
         if (std::none_of(points.begin(), points.end(),
                          [&](const Vec3& p) { return (p - x).norm() <= tolerance; }))
           points.push_back(x);
       }
+  return points;
+}
+
+std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, const CSpace& cspace, double h,
+                                       double tolerance) {
+  const std::size_t n = ob.normals.size();
+  const std::vector<double> e = eroded_part(ob, cspace, h).offsets;
+  std::vector<Vec3> points = polytope_vertices(ob.normals, e, tolerance);
   if (points.size() < 4) return std::nullopt;
   Vec3 centre = Vec3::Zero();
   for (const Vec3& p : points) centre += p;
@@ -272,6 +287,7 @@ struct SceneLayout {
   bool cspace_form = false;
   double scale = 0, s = 0, h = 0, wall = 0;
   std::vector<std::vector<Vec3>> eroded;  // convex C-space parts (C-space form)
+  std::vector<ErodedPart> eroded_parts;   // the same as half-spaces (empty for boxes)
   std::vector<AxisBox> grown;             // C-space boxes before shrinking by h (C-space form)
 };
 
@@ -453,6 +469,11 @@ SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
   l.h = reference_half_size(task, l.scale, l.cspace_form);
   if (l.cspace_form) l.h = std::min(l.h, 0.25 * convex_part_thickness(task, loaded.cspace));
   if (l.cspace_form) l.eroded = eroded_cspace_parts(task, loaded.cspace, 1e-9 * l.scale, &l.h);
+  if (l.cspace_form)
+    for (std::size_t i = 0; i < task.cspace.size(); ++i)
+      l.eroded_parts.push_back(task.cspace[i].shape == ConvexPart::Shape::kConvex
+                                   ? eroded_part(loaded.cspace.obstacles()[i], loaded.cspace, l.h)
+                                   : ErodedPart{});
   // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
   // tunnel through at simulated speeds.
   l.wall = 0.2 * l.scale;
@@ -471,7 +492,7 @@ SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
 std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, SceneInfo* info) {
   const Task& task = loaded.task;
   const SceneLayout l = scene_layout(loaded, options);
-  if (info) *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown};
+  if (info) *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown, l.eroded_parts};
   Writer w;
   w.s = l.s;
   std::ostringstream& out = w.out;
@@ -487,6 +508,33 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   write_start_key(out, task, l.s);
   out << "</mujoco>\n";
   return out.str();
+}
+
+// x lies inside the scene's part by more than tol when some cube of half size h − tol about x has its centre
+// in the eroded part: {y : n . y <= e, |y − x|_inf <= h − tol} is not empty (bounded, so it has a vertex).
+// Otherwise x is on the scene's surface (a robot resting there) or outside it, while inside the task's part.
+bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol) {
+  if (!info.cspace_form) return false;
+  for (std::size_t i = 0; i < info.eroded_parts.size() && i < cspace.obstacles().size(); ++i) {
+    const ErodedPart& part = info.eroded_parts[i];
+    if (part.normals.empty()) continue;
+    const ConvexObstacle& p = cspace.obstacles()[i];
+    bool inside = true;
+    for (std::size_t j = 0; j < p.normals.size() && inside; ++j)
+      inside = p.normals[j].dot(x) < p.offsets[j] - tol;
+    if (!inside) continue;
+    std::vector<Vec3> normals = part.normals;
+    std::vector<double> offsets = part.offsets;
+    const double reach = std::max(0.0, info.reference_half_size - tol);
+    for (int a = 0; a < 3; ++a) {
+      normals.push_back(Vec3::Unit(a));
+      offsets.push_back(x[a] + reach);
+      normals.push_back(-Vec3::Unit(a));
+      offsets.push_back(reach - x[a]);
+    }
+    if (polytope_vertices(normals, offsets, 1e-9 * cspace.scale()).empty()) return true;
+  }
+  return false;
 }
 
 void write_mjcf(const LoadedTask& task, const std::filesystem::path& file, const MjcfOptions& options) {

@@ -83,6 +83,13 @@ struct MjcfOptions {
 MjcfOptions soft_layer_scene();
 
 // Facts about an exported scene that a simulator needs to interpret it.
+// A convex C-space part as the scene emits it, before the robot cube is added back: n . x <= e per facet
+// (task units), the part eroded by the cube (its facets on the bounds first moved out by 2h).
+struct ErodedPart {
+  std::vector<Vec3> normals;
+  std::vector<double> offsets;
+};
+
 struct SceneInfo {
   double meters_per_unit = 1;  // scene length = task length x this
   double reference_half_size =
@@ -92,7 +99,15 @@ struct SceneInfo {
   // C-space form: per task.cspace part, the box emitted before shrinking by h (task units): the part's box
   // grown into its neighbours (MjcfOptions::close_seams), or the bounding box of a convex part.
   std::vector<AxisBox> cspace_boxes;
+  // C-space form: per task.cspace part, its eroded half-spaces (empty for a box).
+  std::vector<ErodedPart> eroded_parts;
 };
+
+// True when x lies inside a convex C-space part P of the task by more than tol, yet not inside the scene's
+// representation of P, (P eroded by the cube) + cube, by more than tol: x is in the cut-back near P's edges
+// and corners that are not box-shaped (docs/mujoco-scene.md "Convex C-space parts"), on the scene's surface
+// there or off it, where the scene does not represent the task. False for boxes and the physical form.
+bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol);
 
 // The MJCF text. Throws std::runtime_error if a convex C-space part is too thin to be represented.
 std::string mjcf_xml(const LoadedTask& task, const MjcfOptions& options = {}, SceneInfo* info = nullptr);

@@ -374,6 +374,11 @@ MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id,
       s.failure = "ended " + std::to_string(depth) + " inside a C-obstacle, beyond tolerance " +
                   std::to_string(scene.unstable_penetration()) +
                   " (the scene does not represent the task there)";
+    } else if (in_convex_cut_back(scene.info(), scene.task().cspace, mo.end, scene.atom_tolerance())) {
+      mo.termination = Termination::kUnstable;
+      s.failure =
+          "ended inside a convex C-space part where the scene cuts it back (its edges and corners that "
+          "are not box-shaped: the scene does not represent the task there)";
     }
   }
   mo.atom = scene.task().cspace.nearest_atom(mo.end, scene.atom_tolerance());

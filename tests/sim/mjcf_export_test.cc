@@ -561,6 +561,46 @@ strategies: {down: [v1]}
   EXPECT_NO_THROW(MujocoModel::load_xml_string(xml));
 }
 
+// The scene's ramp is (ramp eroded by the cube) + cube. Below the convex edge where the slope (rising .3 per
+// unit toward +x) meets the end face x = 10, the eroded half-spaces z <= 1 + .3 x − 1.3 h and x <= 10 − h put
+// a cube's top at most at z = 4 − .6 h there: the scene's surface runs .6 h below the task's edge. Points
+// inside the task's ramp there, on the scene's surface (4 − .6 h: a robot resting on the cut-back) or above
+// it (4 − .3 h), are in the cut-back; deep inside, under a cube that fits, above the slope or beyond the end
+// face they are not.
+TEST(MjcfExport, PointsWhereTheSceneCutsBackAConvexPart) {
+  const auto ramp = load_task_from_string(R"(
+name: ramp
+units: in
+friction: 0.3
+uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}
+cspace:
+  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, 1], [10, 0, 4], [10, 4, 4], [0, 4, 1]]}
+bounds: {min: [-2, -2, 0], max: [12, 6, 6]}
+start: {point: [5, 2, 2.5]}
+goal: {point: [5, 2, 2.5]}
+motions: {v1: {damper: [0, 0, -1]}}
+strategies: {down: [v1]}
+)",
+                                          "ramp");
+  SceneInfo info;
+  mjcf_xml(*ramp, {}, &info);
+  const double h = info.reference_half_size, tol = 1e-4 * ramp->cspace.scale();
+  ASSERT_NEAR(h, 0.25 / std::sqrt(1.09), 1e-12);  // the low end's thickness bounds it
+  ASSERT_EQ(info.eroded_parts.size(), 1u);
+  EXPECT_TRUE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.3 * h), tol));
+  EXPECT_TRUE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h), tol));
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h - 3 * tol), tol));
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 1), tol));            // deep inside
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 2.5 - 2 * h), tol));  // a cube fits
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 3), tol));            // above the slope
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(10 + 0.02 * h, 2, 4 - 0.3 * h), tol));  // outside
+  // Boxes are represented exactly: no cut-back.
+  const auto hole = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  SceneInfo box_info;
+  mjcf_xml(*hole, {}, &box_info);
+  EXPECT_FALSE(in_convex_cut_back(box_info, hole->cspace, Vec3(0, -4, -1.5), 1e-4 * hole->cspace.scale()));
+}
+
 TEST(MjcfExport, HalfSizeAndShrinking) {
   const auto hole = load_task_from_string(test::kHoleYaml, "hole.yaml");
   SceneInfo info;
