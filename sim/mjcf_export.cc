@@ -510,29 +510,35 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   return out.str();
 }
 
-// x lies inside the scene's part by more than tol when some cube of half size h − tol about x has its centre
-// in the eroded part: {y : n . y <= e, |y − x|_inf <= h − tol} is not empty (bounded, so it has a vertex).
-// Otherwise x is on the scene's surface (a robot resting there) or outside it, while inside the task's part.
+// Whether some cube of half size `reach` about x has its centre in the eroded part: {y : n . y <= e,
+// |y − x|_inf <= reach} is not empty (bounded, so it has a vertex). With reach h − tol: x lies inside the
+// scene's part by more than tol; with h + tol: within tol of it.
+bool scene_part_reaches(const ErodedPart& part, const Vec3& x, double reach, double tolerance) {
+  std::vector<Vec3> normals = part.normals;
+  std::vector<double> offsets = part.offsets;
+  for (int a = 0; a < 3; ++a) {
+    normals.push_back(Vec3::Unit(a));
+    offsets.push_back(x[a] + reach);
+    normals.push_back(-Vec3::Unit(a));
+    offsets.push_back(reach - x[a]);
+  }
+  return !polytope_vertices(normals, offsets, tolerance).empty();
+}
+
 bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol) {
   if (!info.cspace_form) return false;
+  const double h = info.reference_half_size, rounding = 1e-9 * cspace.scale();
   for (std::size_t i = 0; i < info.eroded_parts.size() && i < cspace.obstacles().size(); ++i) {
     const ErodedPart& part = info.eroded_parts[i];
     if (part.normals.empty()) continue;
     const ConvexObstacle& p = cspace.obstacles()[i];
-    bool inside = true;
-    for (std::size_t j = 0; j < p.normals.size() && inside; ++j)
-      inside = p.normals[j].dot(x) < p.offsets[j] - tol;
-    if (!inside) continue;
-    std::vector<Vec3> normals = part.normals;
-    std::vector<double> offsets = part.offsets;
-    const double reach = std::max(0.0, info.reference_half_size - tol);
-    for (int a = 0; a < 3; ++a) {
-      normals.push_back(Vec3::Unit(a));
-      offsets.push_back(x[a] + reach);
-      normals.push_back(-Vec3::Unit(a));
-      offsets.push_back(reach - x[a]);
-    }
-    if (polytope_vertices(normals, offsets, 1e-9 * cspace.scale()).empty()) return true;
+    double depth = std::numeric_limits<double>::infinity();  // inside the task's part (< 0: outside)
+    for (std::size_t j = 0; j < p.normals.size(); ++j)
+      depth = std::min(depth, p.offsets[j] - p.normals[j].dot(x));
+    if (depth < -tol) continue;
+    if (depth > tol ? !scene_part_reaches(part, x, std::max(0.0, h - tol), rounding)
+                    : !scene_part_reaches(part, x, h + tol, rounding))
+      return true;
   }
   return false;
 }

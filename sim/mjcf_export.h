@@ -103,10 +103,11 @@ struct SceneInfo {
   std::vector<ErodedPart> eroded_parts;
 };
 
-// True when x lies inside a convex C-space part P of the task by more than tol, yet not inside the scene's
-// representation of P, (P eroded by the cube) + cube, by more than tol: x is in the cut-back near P's edges
-// and corners that are not box-shaped (docs/mujoco-scene.md "Convex C-space parts"), on the scene's surface
-// there or off it, where the scene does not represent the task. False for boxes and the physical form.
+// True when x is in the cut-back of a convex C-space part P (docs/mujoco-scene.md "Convex C-space parts"):
+// the scene represents P by (P eroded by the cube) + cube, cut back near its edges and corners that are not
+// box-shaped. That is, x lies inside P by more than tol but not inside the scene's part by more than tol (a
+// robot resting on the scene's surface below P's), or x lies on P's surface (within tol) but farther than tol
+// from the scene's part (a robot starting there is in the air). False for boxes and the physical form.
 bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol);
 
 // The MJCF text. Throws std::runtime_error if a convex C-space part is too thin to be represented.

@@ -325,6 +325,9 @@ MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id,
   mo.node = node_id;
   errors.begin_motion(node_id);
   const Vec3 start = s.position();
+  // A start in a convex part's cut-back is in the air in the scene (docs/mujoco-scene.md).
+  const bool start_cut_back =
+      in_convex_cut_back(scene.info(), scene.task().cspace, start, scene.atom_tolerance());
   auto controller =
       make_controller(motion, options.form, scene.controller_params(), start + errors.sensing_offset(),
                       [&] { return errors.positioning_error(); });
@@ -374,11 +377,12 @@ MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id,
       s.failure = "ended " + std::to_string(depth) + " inside a C-obstacle, beyond tolerance " +
                   std::to_string(scene.unstable_penetration()) +
                   " (the scene does not represent the task there)";
-    } else if (in_convex_cut_back(scene.info(), scene.task().cspace, mo.end, scene.atom_tolerance())) {
+    } else if (start_cut_back ||
+               in_convex_cut_back(scene.info(), scene.task().cspace, mo.end, scene.atom_tolerance())) {
       mo.termination = Termination::kUnstable;
-      s.failure =
-          "ended inside a convex C-space part where the scene cuts it back (its edges and corners that "
-          "are not box-shaped: the scene does not represent the task there)";
+      s.failure = std::string(start_cut_back ? "started" : "ended") +
+                  " where the scene cuts a convex C-space part back (near its edges and corners that are not "
+                  "box-shaped: the scene does not represent the task there)";
     }
   }
   mo.atom = scene.task().cspace.nearest_atom(mo.end, scene.atom_tolerance());

@@ -590,6 +590,10 @@ strategies: {down: [v1]}
   EXPECT_TRUE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.3 * h), tol));
   EXPECT_TRUE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h), tol));
   EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h - 3 * tol), tol));
+  // On the task's slope beside the edge the scene's part is .59 h below: a start there is in the air. On the
+  // slope away from the edges the scene's surface is the task's.
+  EXPECT_TRUE(in_convex_cut_back(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.006 * h), tol));
+  EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 2.5), tol));
   EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 1), tol));            // deep inside
   EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 2.5 - 2 * h), tol));  // a cube fits
   EXPECT_FALSE(in_convex_cut_back(info, ramp->cspace, Vec3(5, 2, 3), tol));            // above the slope
