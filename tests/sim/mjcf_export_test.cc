@@ -534,26 +534,33 @@ TEST(MjcfExport, SeamsAndConcaveEdgesPushBackAlongTheFaceNormal) {
   EXPECT_GT(checked, 50);
 }
 
-// A ramp over [0, 10] x [0, 4] whose top falls from z = 4 at x = 0 to z = 1 at x = 10: its bounding box is 4
-// thick, but its low end is not. The thinnest it gets is the distance from the slope's plane 0.3 x + z = 4
-// to the floor corner (10, y, 0), 1 / sqrt(1.09) (below the low end's height 1), so h is a quarter of that,
-// not a quarter of 4 (the scene's 0.05 x scale = 0.86 would otherwise decide, and eroding the ramp by a
-// cube of half size 0.86 leaves nothing of it where it is under about 1.9 thick).
-TEST(MjcfExport, AConvexPartsThinEndBoundsTheCube) {
-  const auto ramp = load_task_from_string(R"(
-name: ramp
+// A ramp C-space part over [0, 10] x [0, 4] on the floor, its top from z = z0 at x = 0 to z1 at x = 10, in a
+// room [-2, 12] x [-2, 6] x [0, 6] in; start and goal on the slope at (5, 2, 2.5).
+std::shared_ptr<const LoadedTask> ramp_task(double z0, double z1) {
+  const std::string a = std::to_string(z0), b = std::to_string(z1);
+  return load_task_from_string(R"(name: ramp
 units: in
 friction: 0.3
 uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}
 cspace:
-  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, 4], [10, 0, 1], [10, 4, 1], [0, 4, 4]]}
+  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, )" +
+                                   a + "], [10, 0, " + b + "], [10, 4, " + b + "], [0, 4, " + a + R"(]]}
 bounds: {min: [-2, -2, 0], max: [12, 6, 6]}
 start: {point: [5, 2, 2.5]}
 goal: {point: [5, 2, 2.5]}
 motions: {v1: {damper: [0, 0, -1]}}
 strategies: {down: [v1]}
 )",
-                                          "ramp");
+                               "ramp");
+}
+
+// A ramp over [0, 10] x [0, 4] whose top falls from z = 4 at x = 0 to z = 1 at x = 10: its bounding box is 4
+// thick, but its low end is not. The thinnest it gets is the distance from the slope's plane 0.3 x + z = 4
+// to the floor corner (10, y, 0), 1 / sqrt(1.09) (below the low end's height 1), so h is a quarter of that,
+// not a quarter of 4 (the scene's 0.05 x scale = 0.86 would otherwise decide, and eroding the ramp by a
+// cube of half size 0.86 leaves nothing of it where it is under about 1.9 thick).
+TEST(MjcfExport, AConvexPartsThinEndBoundsTheCube) {
+  const auto ramp = ramp_task(4, 1);
   SceneInfo info;
   const std::string xml = mjcf_xml(*ramp, {}, &info);
   EXPECT_NEAR(info.reference_half_size, 0.25 / std::sqrt(1.09), 1e-12);
@@ -568,20 +575,7 @@ strategies: {down: [v1]}
 // it (4 − .3 h), are in the cut-back; deep inside, under a cube that fits, above the slope or beyond the end
 // face they are not.
 TEST(MjcfExport, PointsWhereTheSceneCutsBackAConvexPart) {
-  const auto ramp = load_task_from_string(R"(
-name: ramp
-units: in
-friction: 0.3
-uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}
-cspace:
-  - convex: {vertices: [[0, 0, 0], [10, 0, 0], [10, 4, 0], [0, 4, 0], [0, 0, 1], [10, 0, 4], [10, 4, 4], [0, 4, 1]]}
-bounds: {min: [-2, -2, 0], max: [12, 6, 6]}
-start: {point: [5, 2, 2.5]}
-goal: {point: [5, 2, 2.5]}
-motions: {v1: {damper: [0, 0, -1]}}
-strategies: {down: [v1]}
-)",
-                                          "ramp");
+  const auto ramp = ramp_task(1, 4);
   SceneInfo info;
   mjcf_xml(*ramp, {}, &info);
   const double h = info.reference_half_size, tol = 1e-4 * ramp->cspace.scale();
