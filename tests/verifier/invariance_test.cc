@@ -95,29 +95,36 @@ class Invariance : public testing::TestWithParam<Case> {};
 
 TEST_P(Invariance, FarMillimetres) { check_invariance(GetParam(), far_millimetres(GetParam().task)); }
 
-INSTANTIATE_TEST_SUITE_P(BuiltIn, Invariance,
-                         testing::Values(Case{"two_blocks", "down"}, Case{"two_blocks", "slide"},
-                                         Case{"two_blocks", "tilt"}, Case{"two_blocks", "probe"},
-                                         Case{"planar_blocks", "down"}, Case{"planar_blocks", "slide"},
-                                         Case{"cube", "stick"}, Case{"hole", "teach"},
-                                         Case{"hole", "teach_too_deep"}, Case{"peg_in_hole_real", "teach"},
-                                         Case{"peg_in_hole_real", "teach_too_deep"}),
-                         [](const testing::TestParamInfo<Case>& info) {
-                           return info.param.task + "_" + info.param.strategy;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    BuiltIn, Invariance,
+    testing::Values(Case{"two_blocks", "down"}, Case{"two_blocks", "slide"}, Case{"two_blocks", "tilt"},
+                    Case{"two_blocks", "probe"}, Case{"planar_blocks", "down"},
+                    Case{"planar_blocks", "slide"}, Case{"cube", "stick"}, Case{"hole", "teach"},
+                    Case{"hole", "teach_too_deep"}, Case{"peg_in_hole_real", "teach"},
+                    Case{"peg_in_hole_real", "teach_too_deep"}, Case{"cube_sensing", "sense"},
+                    Case{"ridge", "down"}, Case{"ridge", "down_right"}, Case{"step_offset", "edr"},
+                    Case{"step_offset", "steep"}, Case{"step_offset", "down"}, Case{"twin_universe", "edr"},
+                    Case{"twin_universe", "one_step"}),
+    [](const testing::TestParamInfo<Case>& info) { return info.param.task + "_" + info.param.strategy; });
 
-// Each transform on its own, on the quick strategies. Quarter turns: about z (planar tasks: about y, their
-// only turning axis), and about x, which turns a floor into a wall (the model has no gravity). The spring
-// strategies of hole, tslot and peg_in_hole_real are not in this list: turned, their atoms differ and their
-// verdicts are not yet invariant (docs/verifier.md "Invariance").
-class InvarianceEach : public testing::TestWithParam<Case> {};
-
-TEST_P(InvarianceEach, Translated) {
+// Each transform on its own. Quarter turns: about z (planar tasks: about y, their only turning axis), and
+// about x, which turns a floor into a wall (the model has no gravity).
+TaskTransform translated(const std::string& task) {
   TaskTransform t;
   t.offset = Vec3(1.0e5, -2.0e5, 3.0e5);
-  if (planar_task(GetParam().task)) t.offset.y() = 0;
-  check_invariance(GetParam(), t);
+  if (planar_task(task)) t.offset.y() = 0;
+  return t;
 }
+
+TaskTransform half_turn(const std::string& task) {
+  return TaskTransform::quarter_turns(planar_task(task) ? 1 : 2, 2);
+}
+
+TaskTransform metres() { return TaskTransform::change_units(LengthUnit::kInch, LengthUnit::kMeter); }
+
+class InvarianceEach : public testing::TestWithParam<Case> {};
+
+TEST_P(InvarianceEach, Translated) { check_invariance(GetParam(), translated(GetParam().task)); }
 
 TEST_P(InvarianceEach, QuarterTurns) {
   const bool planar = planar_task(GetParam().task);
@@ -126,17 +133,52 @@ TEST_P(InvarianceEach, QuarterTurns) {
   if (!planar) check_invariance(GetParam(), TaskTransform::quarter_turns(0, 1));
 }
 
-TEST_P(InvarianceEach, Metres) {
-  check_invariance(GetParam(), TaskTransform::change_units(LengthUnit::kInch, LengthUnit::kMeter));
+TEST_P(InvarianceEach, Metres) { check_invariance(GetParam(), metres()); }
+
+// The model-error tasks (step_offset, twin_universe) are compared as their nominal slices (models/
+// task_transform.h).
+INSTANTIATE_TEST_SUITE_P(
+    Quick, InvarianceEach,
+    testing::Values(Case{"two_blocks", "down"}, Case{"two_blocks", "slide"}, Case{"two_blocks", "tilt"},
+                    Case{"two_blocks", "probe"}, Case{"planar_blocks", "down"},
+                    Case{"planar_blocks", "slide"}, Case{"cube", "stick"}, Case{"cube_sensing", "sense"},
+                    Case{"ridge", "down"}, Case{"ridge", "down_right"}, Case{"step_offset", "edr"},
+                    Case{"step_offset", "steep"}, Case{"step_offset", "down"}, Case{"twin_universe", "edr"},
+                    Case{"twin_universe", "one_step"}),
+    [](const testing::TestParamInfo<Case>& info) { return info.param.task + "_" + info.param.strategy; });
+
+// The spring strategies of hole, tslot and peg_in_hole_real under the transforms they are invariant under
+// today. The others are open (docs/verifier.md "Invariance"): quarter turns about z and x (the convex
+// decomposition of a face follows the world axes, so the turned task has other atoms), teach_too_deep's
+// widened first motion (the fixpoint visits atoms in their index order, which follows the world axes), and
+// peg_in_hole_real 3e5 in from the origin (a false alarm).
+struct SpringCase {
+  Case c;
+  std::string transform;  // "translated", "half_turn" or "metres"
+};
+
+class InvarianceSpring : public testing::TestWithParam<SpringCase> {};
+
+TEST_P(InvarianceSpring, SameVerdictAndSets) {
+  const SpringCase& s = GetParam();
+  const TaskTransform t = s.transform == "translated"  ? translated(s.c.task)
+                          : s.transform == "half_turn" ? half_turn(s.c.task)
+                                                       : metres();
+  check_invariance(s.c, t);
 }
 
-INSTANTIATE_TEST_SUITE_P(Quick, InvarianceEach,
-                         testing::Values(Case{"two_blocks", "slide"}, Case{"two_blocks", "probe"},
-                                         Case{"planar_blocks", "down"}, Case{"planar_blocks", "slide"},
-                                         Case{"cube", "stick"}),
-                         [](const testing::TestParamInfo<Case>& info) {
-                           return info.param.task + "_" + info.param.strategy;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    BuiltIn, InvarianceSpring,
+    testing::Values(SpringCase{{"hole", "teach"}, "translated"}, SpringCase{{"hole", "teach"}, "half_turn"},
+                    SpringCase{{"hole", "teach"}, "metres"},
+                    SpringCase{{"peg_in_hole_real", "teach"}, "half_turn"},
+                    SpringCase{{"peg_in_hole_real", "teach"}, "metres"},
+                    SpringCase{{"peg_in_hole_real", "teach_too_deep"}, "metres"},
+                    SpringCase{{"tslot", "insert"}, "translated"},
+                    SpringCase{{"tslot", "insert"}, "half_turn"}, SpringCase{{"tslot", "insert"}, "metres"}),
+    [](const testing::TestParamInfo<SpringCase>& info) {
+      return info.param.c.task + "_" + info.param.c.strategy + "_" + info.param.transform;
+    });
 
 TEST(TaskTransform, QuarterTurnsAreProperRotations) {
   const TaskTransform z = TaskTransform::quarter_turns(2, 1);
