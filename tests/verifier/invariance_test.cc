@@ -147,11 +147,11 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"twin_universe", "one_step"}),
     [](const testing::TestParamInfo<Case>& info) { return info.param.task + "_" + info.param.strategy; });
 
-// The spring strategies of hole, tslot and peg_in_hole_real under the transforms they are invariant under
-// today. The others are open (docs/verifier.md "Invariance"): quarter turns about z and x (the convex
-// decomposition of a face follows the world axes, so the turned task has other atoms), teach_too_deep's
-// widened first motion (the fixpoint visits atoms in their index order, which follows the world axes), and
-// peg_in_hole_real 3e5 in from the origin (a false alarm).
+// The spring strategies of hole, tslot and peg_in_hole_real under the transforms they are invariant under.
+// The other transforms are open (docs/verifier.md "Invariance"): quarter turns about z and about x, because
+// the convex decomposition of a face follows the world axes, so the turned task has other atoms;
+// teach_too_deep's widened first motion, because the fixpoint visits atoms in index order, and the index
+// follows the world axes; and peg_in_hole_real 3e5 in from the origin, a false alarm.
 struct SpringCase {
   Case c;
   std::string transform;  // "translated", "half_turn" or "metres"
