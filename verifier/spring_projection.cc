@@ -61,7 +61,7 @@ struct EdgeState {
 class SpringProjector {
  public:
   SpringProjector(const LoadedTask& task, const ReachedSet& start, const Vec3& p, SpringModel model,
-                  double stop_relative_speed, double contact_lift)
+                  double stop_relative_speed, double contact_lift, double servo_coast, double spring_lag)
       : cspace_(task.cspace),
         u_(task.task.uncertainty),
         p_(p),
@@ -77,6 +77,8 @@ class SpringProjector {
     if (model_ == SpringModel::kVelocity) {
       const double reach = velocity_reach_bound(cspace_, start, p_, u_);
       velocity_ = {p_, u_, reach, velocity_invariant_half_spaces(cspace_, start, p_, u_, reach)};
+      velocity_.coast = std::max(0.0, servo_coast);
+      spring_lag_ = std::max(0.0, spring_lag);
       slow_radius_ = slow_stop_radius(start, p_, u_, stop_relative_speed);
     }
     // The weak sticking regions with the slow-stop radius added to the sensing error (strong ones keep
@@ -519,8 +521,95 @@ class SpringProjector {
     if (!fly_hull.empty() && may_leave(fi, lifted(fi, fly_hull))) {
       std::vector<Point3> src;
       for (const Point2& q : fly_hull) src.push_back(chart.lift(q));
+      // First order also with the servo coast: where the pull turns to leave the face its normal component
+      // passes zero, so the sliding velocity (its tangential part) meets the flight velocity without a jump
+      // for the servo to lag behind (docs/verifier.md "Servo coast of springs").
       fly(src, fi);
     }
+  }
+
+  // Servo coast of springs (docs/verifier.md "Servo coast of springs"): velocity model with tau V > 0.
+  bool coasts() const { return model_ == SpringModel::kVelocity && velocity_.coast > 0; }
+
+  // The coast of a robot leaving from conv(pts): tau |u| <= tau V, and the spring's speed is at most lambda
+  // (|p − x| + eps_s) (its drive before the top speed), so tau |u| <= lambda tau (|p − x| + eps_s).
+  double coast_at(const std::vector<Vec3>& pts) const {
+    double c = velocity_.coast;
+    if (spring_lag_ > 0) {
+      double far = 0;
+      for (const Vec3& x : pts) far = std::max(far, (x - p_).norm());
+      c = std::min(c, spring_lag_ * (far + u_.eps_s));
+    }
+    return c * (1 + kDecisionMargin);
+  }
+
+  // The coast displacements of every velocity in face fi's plane: the square circumscribing the disk of
+  // radius c.
+  std::vector<Vec3> in_plane_square(int fi, double c) const {
+    const Vec3& n = cspace_.faces()[fi].normal;
+    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    return {c * (t1 + t2), c * (t1 - t2), c * (-t1 - t2), c * (-t1 + t2)};
+  }
+
+  // The coast displacements tau u of the velocities u (|u| <= V) of a robot sliding on face fi at points of
+  // conv(pts) (in the plane). Sliding, the in-plane velocity at x is within beta(d) = asin(sin(theta_v)
+  // sqrt(d^2 + h^2) / d) of the direction to p*' (docs/verifier.md "Velocity-form spring model"; d the
+  // in-plane distance, h <= |depth| + eps_s), and p*' lies within eps_s of p': within gamma = beta(d_min) +
+  // asin(eps_s / d_min) of the direction to p', and over conv(pts) those directions lie within the largest
+  // angle sigma between a vertex's and their mean: the wedge of half-angle alpha = sigma + gamma (at most
+  // pi/3; otherwise, or near p', `fallback`).
+  std::vector<Vec3> slide_wedge(int fi, const std::vector<Vec3>& pts,
+                                const std::vector<Vec3>& fallback) const {
+    const Face& f = cspace_.faces()[fi];
+    const double c = coast_at(pts);
+    const Vec3 pp = p_ + face_[fi].depth * f.normal;  // p' (p projected on the plane)
+    const double eps = u_.eps_s, h = std::abs(face_[fi].depth) + eps;
+    std::vector<Vec3> dirs;
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& x : pts) {
+      const Vec3 v = pp - x;
+      if (v.norm() <= eps) return fallback;
+      dirs.push_back(v.normalized());
+      mean += dirs.back();
+    }
+    if (mean.norm() < 0.5 * static_cast<double>(pts.size())) return fallback;  // directions spread widely
+    const Vec3 axis = mean.normalized();
+    double sigma = 0;
+    for (const Vec3& m : dirs) sigma = std::max(sigma, angle_between(axis, m));
+    if (sigma >= std::numbers::pi / 3) return fallback;
+    // A lower bound of the in-plane distance from p' over conv(pts): (p' − x) . axis is linear in x, so its
+    // least value over the hull is at a vertex, and |p' − x| is at least that.
+    double d_min = std::numeric_limits<double>::infinity();
+    for (const Vec3& x : pts) d_min = std::min(d_min, (pp - x).dot(axis));
+    d_min *= 1 - kDecisionMargin;
+    if (d_min <= eps) return fallback;
+    const double sin_beta = std::sin(u_.theta_v) * std::hypot(d_min, h) / d_min;
+    if (sin_beta >= 1) return fallback;
+    const double gamma = std::asin(sin_beta) + std::asin(eps / d_min);
+    const double alpha = (sigma + gamma) * (1 + kDecisionMargin) + kDecisionMargin;
+    if (alpha > std::numbers::pi / 3) return fallback;
+    // The sector of radius c and half-angle alpha lies in the pentagon 0, c w(−alpha), R w(−alpha / 2),
+    // R w(alpha / 2), c w(alpha), R = c / cos(alpha / 2) (its tangents at −alpha, 0 and alpha meet there).
+    const Vec3 side = f.normal.cross(axis).normalized();
+    const auto w = [&](double angle, double r) {
+      return Vec3(r * (std::cos(angle) * axis + std::sin(angle) * side));
+    };
+    const double r = c / std::cos(alpha / 2);
+    return {Vec3::Zero(), w(-alpha, c), w(-alpha / 2, r), w(alpha / 2, r), w(alpha, c)};
+  }
+
+  // slide_wedge toward edge e from seg[a, b], falling back to the outward half-disk of radius tau V, in the
+  // triangle −2c t, 2c t, 2c out (|x| + y <= 2c on it).
+  std::vector<Vec3> rim_sector(const Edge& e, int fi, const Vec3& a, const Vec3& b) const {
+    const Vec3 t = (e.b - e.a).normalized(), out = -into_face(e, fi);
+    const double c = coast_at({a, b});
+    return slide_wedge(fi, {a, b}, {-2 * c * t, 2 * c * t, 2 * c * out});
+  }
+
+  // slide_wedge from conv(pts) on face fi, falling back to the square circumscribing the disk of radius tau
+  // V.
+  std::vector<Vec3> face_sector(int fi, const std::vector<Vec3>& pts) const {
+    return slide_wedge(fi, pts, in_plane_square(fi, coast_at(pts)));
   }
 
   static Points2 hull_or_points(const Points2& pts) {
@@ -530,11 +619,26 @@ class SpringProjector {
   }
 
   void fly(const std::vector<Point3>& src, int source_face) {
+    absorb(model_ == SpringModel::kVelocity
+               ? velocity_fly(reached_impl_, src, source_face, velocity_)
+               : spring_fly(reached_impl_, spring_generators(src, p_, eps_o_), source_face, eps_t_));
+  }
+
+  // Servo coast of springs (docs/verifier.md "Servo coast of springs"): a robot that leaves `src` at a
+  // sliding velocity u keeps it for about tau, so it flies from src + conv(0, tau u): one flight per set of
+  // departure displacements (velocity_fly grows each region by it); with none, the first-order flight.
+  void coast_fly(const std::vector<Point3>& src, int source_face,
+                 const std::vector<std::vector<Vec3>>& departures) {
+    if (departures.empty()) {
+      fly(src, source_face);
+      return;
+    }
+    for (const std::vector<Vec3>& d : departures)
+      absorb(velocity_fly(reached_impl_, src, source_face, velocity_, d));
+  }
+
+  void absorb(std::vector<FlightHit> hits) {
     flew_ = true;
-    std::vector<FlightHit> hits =
-        model_ == SpringModel::kVelocity
-            ? velocity_fly(reached_impl_, src, source_face, velocity_)
-            : spring_fly(reached_impl_, spring_generators(src, p_, eps_o_), source_face, eps_t_);
     for (FlightHit& h : hits) {
       if (model_ == SpringModel::kVelocity) {
         // No landing inside the no-slide disk: there every admissible velocity points out of the face, so
@@ -633,7 +737,18 @@ class SpringProjector {
       if (!flies) continue;
       std::vector<Point3> src = {exact(a)};
       if (iv.t1 > iv.t0) src.push_back(exact(b));
-      fly(src, -1);
+      if (!coasts()) {
+        fly(src, -1);
+        continue;
+      }
+      // Servo coast: at a convex edge the robot may arrive sliding on a face toward it (may_approach) and
+      // leave at that velocity: one departure wedge per such face, in its plane. (Sliding along the edge,
+      // its coast is contact motion, which the first-order edge model bounds; not covered, as for dampers.)
+      std::vector<std::vector<Vec3>> departures;
+      if (e.shape == EdgeShape::kConvex)
+        for (int g : e.faces)
+          if (may_approach(e, g, a, b)) departures.push_back(rim_sector(e, g, a, b));
+      coast_fly(src, -1, departures);
     }
   }
 
@@ -731,7 +846,16 @@ class SpringProjector {
       add_interval(e - face_count_, t, t);
     }
     for (int f : vx.faces) add_entry_lower(f, {reached_impl_.charts[f].project(vx.point)});
-    fly({exact(vx.point)}, -1);
+    if (!coasts()) {
+      fly({exact(vx.point)}, -1);
+      return;
+    }
+    // Servo coast: one departure wedge per face at the vertex that the robot may slide on, in its plane (a
+    // robot that arrived along an edge: its coast past the vertex is not covered, as for dampers).
+    std::vector<std::vector<Vec3>> departures;
+    for (int f : vx.faces)
+      if (slides_on(f)) departures.push_back(face_sector(f, {vx.point}));
+    coast_fly({exact(vx.point)}, -1, departures);
   }
 
   // ---- results ----
@@ -790,6 +914,7 @@ class SpringProjector {
   const ReachedSet& start_;  // alive during run() (forward_project_spring)
   double kappa_;             // the stop rule's relative speed
   double lift_;              // contact lift (task units; 0: first-order contact)
+  double spring_lag_ = 0;    // lambda tau (VerifyOptions::spring_lag; 0: not used)
   ReachedSet reached_;
   ReachedSet::Impl& reached_impl_;
   int face_count_ = 0, edge_count_ = 0, vertex_count_ = 0;
@@ -820,8 +945,10 @@ const char* spring_model_name(SpringModel m) {
 }
 
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
-                                        SpringModel model, double stop_relative_speed, double contact_lift) {
-  return SpringProjector(task, start, p, model, stop_relative_speed, contact_lift).run();
+                                        SpringModel model, double stop_relative_speed, double contact_lift,
+                                        double servo_coast, double spring_lag) {
+  return SpringProjector(task, start, p, model, stop_relative_speed, contact_lift, servo_coast, spring_lag)
+      .run();
 }
 
 }  // namespace cmt

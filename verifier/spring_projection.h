@@ -88,8 +88,12 @@ std::vector<HalfSpace> velocity_invariant_half_spaces(const CSpace& cspace, cons
 // `contact_lift` (>= 0, task units, VerifyOptions::contact_lift): a robot sliding on one face of a reached
 // concave edge toward it may be up to this far off that face when it meets the other one (docs/verifier.md
 // "Contact lift"); the other face gets lift strips over the reached edge intervals, as for dampers.
+// `servo_coast` (>= 0, task units, VerifyOptions::servo_coast): tau V, how far the servo's lag may carry the
+// robot beyond the first-order flight; velocity-model flights are bounded for the lag (docs/verifier.md
+// "Servo coast of springs"); `spring_lag` (VerifyOptions::spring_lag) bounds it near p.
 SpringProjection forward_project_spring(const LoadedTask& task, const ReachedSet& start, const Vec3& p,
                                         SpringModel model = SpringModel::kViaPoint,
-                                        double stop_relative_speed = 0, double contact_lift = 0);
+                                        double stop_relative_speed = 0, double contact_lift = 0,
+                                        double servo_coast = 0, double spring_lag = 0);
 
 }  // namespace cmt

@@ -8,6 +8,13 @@
 // within sigma of −a), and |y − p| <= R + 2 eps. All three are convex; their sections by a face plane are
 // computed from support functions (support_section), so a piece's reach on a face is a convex polygon.
 // Sources are cut into pieces so that sigma and the spread of R stay small (the bounds are per piece).
+//
+// Servo coast (docs/verifier.md "Servo coast of springs"): a robot that leaves at a sliding velocity u keeps
+// it for about the servo's time constant tau; free of contact its position is x0 + a u + (a first-order
+// displacement), a in [0, tau] (the rollouts' servo, as for dampers). With `departure` the coast
+// displacements tau u (S = conv(0, departure)), each piece's region is grown to region + S: every support
+// and every invariant half-space by the support of S. Which faces a flight cannot land on is decided for
+// the piece itself, as without the coast.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -54,8 +61,8 @@ bool touches_only_at_tips(const Face& f, const std::vector<Vec3>& piece, const T
 
 // One piece's reach (see the file comment) into `regions` / `lowers`.
 void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int source_face,
-               const VelocitySpring& m, double r_lower, std::map<int, std::vector<Polygon2>>* regions,
-               std::map<int, Points2>* lowers) {
+               const VelocitySpring& m, double r_lower, const std::vector<Vec3>& departure,
+               std::map<int, std::vector<Polygon2>>* regions, std::map<int, Points2>* lowers) {
   const double scale = g.cspace->scale();
   const double eps = m.u.eps_s;
   const Vec3& p = m.p;
@@ -138,12 +145,23 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
       });
     }
   }
+  // Servo coast: the region + conv(0, departure) (the file comment).
+  std::vector<HalfSpace> clip = m.bounds;
+  if (!departure.empty()) {
+    auto coast_support = [departure](const Vec3& w) {
+      double best = 0;
+      for (const Vec3& d : departure) best = std::max(best, d.dot(w));
+      return best * (1 + kSlack);
+    };
+    for (Support& b : bounds) b = [b, coast_support](const Vec3& w) { return b(w) + coast_support(w); };
+    for (HalfSpace& h : clip) h.offset += coast_support(h.normal);
+  }
   const int nf = static_cast<int>(g.cspace->faces().size());
   for (int fi = 0; fi < nf; ++fi) {
     if (fi == source_face || std::find(skip_faces.begin(), skip_faces.end(), fi) != skip_faces.end())
       continue;
     if (touches_only_at_tips(g.cspace->faces()[fi], piece, tips)) continue;
-    const Points2 section = support_section(g, fi, bounds, false, &m.bounds);
+    const Points2 section = support_section(g, fi, bounds, false, &clip);
     if (section.size() < 3 && !section.empty()) {
       // A segment or point on the plane of a piece lying in that plane is the piece itself (the robot leaving
       // it is already there; edges and vertices seed their faces themselves, may_enter).
@@ -163,7 +181,8 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
 }  // namespace
 
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector<Point3>& src,
-                                    int source_face, const VelocitySpring& m) {
+                                    int source_face, const VelocitySpring& m,
+                                    const std::vector<Vec3>& departure) {
   const double scale = g.cspace->scale();
   const double delta = spring_spiral_deviation(m.u.theta_v);
   const double margin = kSlack * scale;
@@ -177,7 +196,7 @@ std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector
   const double cut_eps = cutting_eps(m.u, scale);
   const double radial_limit = delta > 0 ? cut_eps / (4 * delta) : std::numeric_limits<double>::infinity();
   split_source(poly, p, cut_eps, radial_limit, margin, [&](const std::vector<Vec3>& piece, double r_lower) {
-    fly_piece(g, piece, source_face, m, r_lower, &regions, &lowers);
+    fly_piece(g, piece, source_face, m, r_lower, departure, &regions, &lowers);
   });
   std::vector<FlightHit> out;
   for (auto& [face, polys] : regions) {

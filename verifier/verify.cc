@@ -18,8 +18,9 @@ VerifyStep simulate(const LoadedTask& task, const AtomCones& cones, const Motion
                     const ReachedSet& start, const VerifyOptions& options) {
   VerifyStep step{motion.name, ReachedSet(task.cspace)};
   if (motion.kind == Motion::Kind::kSpring) {
-    SpringProjection p = forward_project_spring(task, start, motion.target, options.spring_model,
-                                                options.stop_relative_speed, options.contact_lift);
+    SpringProjection p = forward_project_spring(
+        task, start, motion.target, options.spring_model, options.stop_relative_speed, options.contact_lift,
+        options.spring_coast ? options.servo_coast : 0.0, options.spring_lag);
     step.termination = std::move(p.termination);
     step.may_not_terminate = p.may_not_terminate;
     step.slide_forever = std::move(p.slide_forever);

@@ -110,12 +110,20 @@ struct VerifyOptions {
   // gains). Damper projections seed that band beside every reached concave edge. 0: Buckley's first-order
   // contact.
   double contact_lift = 0;
-  // tau V (task units): how far the servo's lag may carry a damper motion on, at an impact along the face it
-  // lands on and past a convex rim it slides over (docs/verifier.md "Servo coast"). The rollouts' servo
+  // tau V (task units): how far the servo's lag may carry a motion on: a damper at an impact along the face
+  // it lands on and past a convex rim it slides over (docs/verifier.md "Servo coast"), a velocity-model
+  // spring in every flight (the lead point's bounds, "Servo coast of springs"). The rollouts' servo
   // m xddot = b (v_c - xdot) relaxes the velocity with time constant tau = m / b, so a velocity change the
   // first-order model makes at once takes tau there; experiments/validation/verifier_model.h derives tau V
-  // from the scene. Spring motions ignore it. 0: Buckley's first-order model.
+  // from the scene. 0: Buckley's first-order model.
   double servo_coast = 0;
+  // lambda tau (dimensionless): a spring's speed is at most lambda |x_c − x̂| (lambda its rate, the rollouts'
+  // drive before its top speed), so its coast is at most lambda tau (|p − x| + eps_s) as well as servo_coast
+  // (docs/verifier.md "Servo coast of springs"). 0: servo_coast alone bounds it.
+  double spring_lag = 0;
+  // Also bound velocity-model spring flights for the servo coast (servo_coast, spring_lag; docs/verifier.md
+  // "Servo coast of springs"). Off by default: it makes peg_in_hole_real `teach` a false alarm.
+  bool spring_coast = false;
 };
 
 // The pieces of `final_set` outside the task's goal (within kGoalRelativeTolerance for 1-D and 0-D pieces):

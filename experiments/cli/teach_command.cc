@@ -254,7 +254,7 @@ void run_teach(const TeachCli& cli, CommandState& state) {
   TeachOptions options;
   options.refine_depth = cli.depth;
   options.verify = {cli.spring_model, kStopRelativeSpeed, rollout_contact_lift(*task),
-                    rollout_servo_coast(*task)};
+                    rollout_servo_coast(*task), rollout_spring_lag()};
   teaching::Session session(task, options);
   TeachOutcome o;
   o.steps_not_run = run_session(cli, task->task, session, state.json);

@@ -111,8 +111,9 @@ struct VerifyCli {
   bool reached = false;
   SpringModel spring_model = SpringModel::kVelocity;
   double stop_relative_speed = kStopRelativeSpeed;
-  double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
-  double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
+  double contact_lift = -1;   // < 0: the rollouts' scene (rollout_contact_lift)
+  double servo_coast = -1;    // < 0: the rollouts' scene (rollout_servo_coast)
+  bool spring_coast = false;  // VerifyOptions::spring_coast
   double time_limit = kDefaultVerifyTimeLimit;
   bool edr = false;
   int resolution = EdrVerdictRequest{}.resolution;
@@ -161,9 +162,12 @@ void run_verify(const VerifyCli& cli, CommandState& state) {
   } else {
     throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
   }
-  const VerifyOptions verify_options{cli.spring_model, cli.stop_relative_speed,
+  const VerifyOptions verify_options{cli.spring_model,
+                                     cli.stop_relative_speed,
                                      cli.contact_lift >= 0 ? cli.contact_lift : rollout_contact_lift(*task),
-                                     cli.servo_coast >= 0 ? cli.servo_coast : rollout_servo_coast(*task)};
+                                     cli.servo_coast >= 0 ? cli.servo_coast : rollout_servo_coast(*task),
+                                     rollout_spring_lag(),
+                                     cli.spring_coast};
   const nlohmann::json j =
       verify_json_within_time_limit(*task, strategy, verify_options, cli.time_limit, cli.reached, start);
   if (j.contains("error")) {
@@ -213,6 +217,9 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                   "slides over; default: the rollouts' MuJoCo scene, (m/b) V (docs/verifier.md \"Servo "
                   "coast\"); 0 = Buckley's first-order model")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--spring-coast", options->spring_coast,
+                "also bound velocity-model spring flights for the servo coast past convex rims and vertices "
+                "(docs/verifier.md \"Servo coast of springs\"); off by default");
   cmd->add_option("--time-limit", options->time_limit,
                   "wall-clock seconds the verifier may run (default " +
                       std::to_string(kDefaultVerifyTimeLimit) +

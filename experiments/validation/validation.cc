@@ -71,8 +71,10 @@ ValidationResult run_validation(std::shared_ptr<const LoadedTask> task, const st
     r.verify_seconds = options.verifier_timed_out_after;
   } else {
     // The widened task has the same strategies and C-space; only its uncertainty differs.
+    VerifyOptions verify_options = r.verifier.verify_options();
+    verify_options.spring_coast = options.spring_coast;
     r.prediction = verify_strategy(*r.verifier.task, *r.verifier.task->task.find_strategy(strategy_name),
-                                   r.verifier.verify_options());
+                                   verify_options);
     r.verify_seconds = seconds_since(start);
   }
   if (options.after_verify) options.after_verify();

@@ -25,11 +25,18 @@ double rollout_contact_lift(const LoadedTask& task) {
 
 double rollout_servo_coast(const LoadedTask& task) {
   const SimOptions sim;
-  return sim.scene.robot_mass / sim.scene.damping * sim.damper_speed_per_scale * task.cspace.scale();
+  const double speed = std::max(sim.damper_speed_per_scale, sim.max_speed_per_scale) * task.cspace.scale();
+  return sim.scene.robot_mass / sim.scene.damping * speed;
+}
+
+double rollout_spring_lag() {
+  const SimOptions sim;
+  return sim.spring_rate * sim.scene.robot_mass / sim.scene.damping;
 }
 
 VerifyOptions rollout_verify_options(const LoadedTask& task) {
-  return {SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(task), rollout_servo_coast(task)};
+  return {SpringModel::kVelocity, kStopRelativeSpeed, rollout_contact_lift(task), rollout_servo_coast(task),
+          rollout_spring_lag()};
 }
 
 VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, ControllerForm form) {
@@ -37,6 +44,7 @@ VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, Contro
   m.task = task;
   m.contact_lift = rollout_contact_lift(*task);
   m.servo_coast = rollout_servo_coast(*task);
+  m.spring_lag = rollout_spring_lag();
   m.form = form;
   m.task_theta_v = task->task.uncertainty.theta_v;
   m.theta_f = task->task.uncertainty.theta_f;
@@ -92,6 +100,7 @@ nlohmann::json verifier_model_json(const VerifierModel& m) {
           {"stop_relative_speed", m.stop_relative_speed},
           {"contact_lift", m.contact_lift},
           {"servo_coast", m.servo_coast},
+          {"spring_lag", m.spring_lag},
           {"reason", m.reason}};
 }
 

@@ -64,8 +64,13 @@ double rollout_contact_lift(const LoadedTask& task);
 // coast"): free of contact the servo m xddot = b (v_c - xdot) relaxes the velocity toward the command with
 // time constant tau = m / b, so where the first-order model changes a damper's velocity at once (an impact,
 // leaving a face) the robot keeps its old one for about tau and moves on up to tau |xdot| <= tau V, V the
-// damper speed (SimOptions, a fraction of the scene scale per second).
+// larger of the damper speed and the spring's top speed (SimOptions, fractions of the scene scale per
+// second).
 double rollout_servo_coast(const LoadedTask& task);
+
+// lambda tau of the rollouts' springs (VerifyOptions::spring_lag): their rate (SimOptions::spring_rate) times
+// the servo's time constant m / b.
+double rollout_spring_lag();
 
 // The options that model the rollouts' impedance-form scene: velocity springs, the rollouts' stop rule,
 // contact lift and servo coast of the scene.
@@ -90,10 +95,12 @@ struct VerifierModel {
   double contact_lift = 0;
   // How far the servo's lag may carry a damper on at an impact or past a rim (rollout_servo_coast).
   double servo_coast = 0;
+  // A spring's coast is also at most this times its distance to the target (rollout_spring_lag).
+  double spring_lag = 0;
   std::string reason;  // in words, for the JSON
 
   VerifyOptions verify_options() const {
-    return {spring_model, stop_relative_speed, contact_lift, servo_coast};
+    return {spring_model, stop_relative_speed, contact_lift, servo_coast, spring_lag};
   }
 };
 
@@ -103,7 +110,7 @@ struct VerifierModel {
 VerifierModel make_verifier_model(std::shared_ptr<const LoadedTask> task, ControllerForm form);
 
 // {controller, task_theta_v, theta_f, extra_angle, theta_v, spring_model, stop_relative_speed, contact_lift,
-// servo_coast, reason}.
+// servo_coast, spring_lag, reason}.
 nlohmann::json verifier_model_json(const VerifierModel& model);
 
 }  // namespace cmt

@@ -43,6 +43,9 @@ struct VelocitySpring {
   Uncertainty u;     // theta_v (possibly widened, experiments/validation/verifier_model.h) and eps_s are used
   double reach = 0;  // every point of the motion lies within this distance of p (velocity_reach_bound)
   std::vector<HalfSpace> bounds;  // every point of the motion lies in these (velocity_invariant_half_spaces)
+  // Servo coast c = tau V (VerifyOptions::servo_coast, docs/verifier.md "Servo coast of springs"); 0 is the
+  // first-order model (spring_projection.cc flies the coast's prisms).
+  double coast = 0;
 };
 
 // The part of face fi within m.reach of p (outer polygon; empty if none): what widening may take.
@@ -52,9 +55,11 @@ Points2 velocity_reach_section(const ReachedSet::Impl& geometry, int fi, const V
 // source, g ∩ (conv(X ∪ B(p, eps_s)) ⊕ ball(delta (R + eps_s))) ∩ ball(p, min(R + 2 eps_s, reach)) ∩ (X +
 // cone(−a, theta_v + sigma + asin(eps_s / R_min))) ∩ the spiral regions (R: max |x − p| over X; a, sigma: X's
 // mean direction from p and angular radius about it). No occlusion (paths bend); no landing on a face the
-// flight meets only in the piece's own points.
+// flight meets only in the piece's own points. `departure` (servo coast, task units): the displacements tau
+// u of the velocities u the robot may leave with; every region grows by conv(0, departure).
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std::vector<Point3>& src,
-                                    int source_face, const VelocitySpring& m);
+                                    int source_face, const VelocitySpring& m,
+                                    const std::vector<Vec3>& departure = {});
 
 // Sliding on face fi from the convex chart piece `part` (1, 2 or more points): the face ∩ (conv(part ∪
 // disk(p', eps_s)) ⊕ disk(L)) ∩ disk(p', max(d0, zone) + eps_s) ∩ the in-plane spiral regions ∩ (the forward
