@@ -551,17 +551,16 @@ class SpringProjector {
     return {c * (t1 + t2), c * (t1 - t2), c * (-t1 - t2), c * (-t1 + t2)};
   }
 
-  // The coast displacements tau u of the velocities u (|u| <= V) of a robot sliding on face fi at points of
+  // The coast displacements tau u (|tau u| <= c, coast_at) of a robot sliding on face fi at points of
   // conv(pts) (in the plane). Sliding, the in-plane velocity at x is within beta(d) = asin(sin(theta_v)
   // sqrt(d^2 + h^2) / d) of the direction to p*' (docs/verifier.md "Velocity-form spring model"; d the
   // in-plane distance, h <= |depth| + eps_s), and p*' lies within eps_s of p': within gamma = beta(d_min) +
   // asin(eps_s / d_min) of the direction to p', and over conv(pts) those directions lie within the largest
   // angle sigma between a vertex's and their mean: the wedge of half-angle alpha = sigma + gamma (at most
   // pi/3; otherwise, or near p', `fallback`).
-  std::vector<Vec3> slide_wedge(int fi, const std::vector<Vec3>& pts,
+  std::vector<Vec3> slide_wedge(int fi, const std::vector<Vec3>& pts, double c,
                                 const std::vector<Vec3>& fallback) const {
     const Face& f = cspace_.faces()[fi];
-    const double c = coast_at(pts);
     const Vec3 pp = p_ + face_[fi].depth * f.normal;  // p' (p projected on the plane)
     const double eps = u_.eps_s, h = std::abs(face_[fi].depth) + eps;
     std::vector<Vec3> dirs;
@@ -603,13 +602,14 @@ class SpringProjector {
   std::vector<Vec3> rim_sector(const Edge& e, int fi, const Vec3& a, const Vec3& b) const {
     const Vec3 t = (e.b - e.a).normalized(), out = -into_face(e, fi);
     const double c = coast_at({a, b});
-    return slide_wedge(fi, {a, b}, {-2 * c * t, 2 * c * t, 2 * c * out});
+    return slide_wedge(fi, {a, b}, c, {-2 * c * t, 2 * c * t, 2 * c * out});
   }
 
   // slide_wedge from conv(pts) on face fi, falling back to the square circumscribing the disk of radius tau
   // V.
   std::vector<Vec3> face_sector(int fi, const std::vector<Vec3>& pts) const {
-    return slide_wedge(fi, pts, in_plane_square(fi, coast_at(pts)));
+    const double c = coast_at(pts);
+    return slide_wedge(fi, pts, c, in_plane_square(fi, c));
   }
 
   static Points2 hull_or_points(const Points2& pts) {
