@@ -26,6 +26,10 @@ namespace {
 // other.
 constexpr int kPartBit = 1;
 constexpr int kReferenceBit = 2;
+// C-space form: convex part k (in task order) and its robot copy (below) share bit 4 << k, so each copy meets
+// its own part only. Bits 2..30 of the positive int: 29 copies; further convex parts are eroded by the cube.
+constexpr int kFirstCopyBit = 4;
+constexpr int kMaxConvexCopies = 29;
 
 // Shortest decimal text that reads back to the same double, so the scene carries the task's exact values.
 std::string num(double v) {
@@ -109,6 +113,40 @@ std::optional<std::vector<Vec3>> erode(const ConvexObstacle& ob, const CSpace& c
   for (std::size_t i = 0; i < n; ++i)
     if (e[i] - ob.normals[i].dot(centre) <= 1e3 * tolerance) return std::nullopt;
   return points;
+}
+
+// A convex C-space part P met by a robot copy instead of the cube (docs/mujoco-scene.md "Convex C-space
+// parts"): with c a point inside P and 0 < eps < 1, the part emitted is A = (1 - eps) P + eps c and the
+// robot's geom is R = eps (c - P) about the C-space point (P reflected through c, then scaled). The robot at
+// x meets A where x lies in A + (-R) = (1 - eps) P + eps P, which for convex P is P exactly, sharp edges
+// included. Facets on the bounds first move out by `grow` (into the solid outside, as boxes grow), so the
+// copy of a part standing on the floor overlaps the emitted part by `grow` below the floor's level instead of
+// meeting it edge to edge: a robot pushed along the floor into the part is pushed back out sideways. eps
+// makes the copy's diameter 0.1 x scale (as the cube's edge), at most half the part's.
+struct HomotheticCopy {
+  std::vector<Vec3> scene_part, robot_copy;
+};
+
+HomotheticCopy homothetic_copy(const ConvexObstacle& ob, const CSpace& cspace, double grow, double scale) {
+  std::vector<double> offsets = ob.offsets;
+  for (std::size_t i = 0; i < ob.normals.size(); ++i)
+    if (cspace.covered_by_bounds(ob.normals[i], ob.offsets[i])) offsets[i] += grow;
+  const std::vector<Vec3> vertices = polytope_vertices(ob.normals, offsets, 1e-9 * scale);
+  if (vertices.size() < 4)
+    throw std::logic_error("mjcf_xml: a convex C-space part has fewer than 4 vertices");
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& v : vertices) centre += v;
+  centre /= static_cast<double>(vertices.size());
+  double diameter = 0;
+  for (const Vec3& a : vertices)
+    for (const Vec3& b : vertices) diameter = std::max(diameter, (a - b).norm());
+  const double eps = std::min(0.5, 0.1 * scale / diameter);
+  HomotheticCopy out;
+  for (const Vec3& v : vertices) {
+    out.scene_part.push_back((1 - eps) * v + eps * centre);
+    out.robot_copy.push_back(eps * (centre - v));
+  }
+  return out;
 }
 
 struct Writer {
@@ -220,11 +258,14 @@ constexpr char kReferenceRgba[] = "0.2 0.55 0.9 0.6";
 
 // Reference cube half size h: small against the scene, and at most a quarter of the thinnest part, so that
 // every C-space box shrunk by h keeps at least half its extent.
-double reference_half_size(const Task& task, double scale, bool cspace_form) {
+// In C-space form only the parts the cube meets count (`cube_parts`: boxes and convex parts without a copy).
+double reference_half_size(const Task& task, double scale, bool cspace_form,
+                           const std::vector<bool>& cube_parts) {
   double thinnest = std::numeric_limits<double>::infinity();
   auto consider = [&](const std::vector<ConvexPart>& parts) {
-    for (const ConvexPart& p : parts) {
-      const AxisBox b = bounding_box(p);
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (cspace_form && !cube_parts[i]) continue;
+      const AxisBox b = bounding_box(parts[i]);
       thinnest = std::min(thinnest, (b.max - b.min).minCoeff());
     }
   };
@@ -243,11 +284,11 @@ double reference_half_size(const Task& task, double scale, bool cspace_form) {
 // vertex off it (a box's least extent; a ramp's low end, which its bounding box does not show). A cube of
 // half size h above a quarter of it would erode that end away (the rollouts' robot then sinks where the
 // C-obstacle is, docs/mujoco-scene.md "Convex C-space parts"). Infinity without convex parts.
-double convex_part_thickness(const Task& task, const CSpace& cspace) {
+double convex_part_thickness(const Task& task, const CSpace& cspace, const std::vector<bool>& cube_parts) {
   const double off = 1e-9 * cspace.scale();  // a vertex this close to a facet's plane lies on the facet
   double thinnest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < task.cspace.size() && i < cspace.obstacles().size(); ++i) {
-    if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
+    if (task.cspace[i].shape != ConvexPart::Shape::kConvex || !cube_parts[i]) continue;
     const ConvexObstacle& ob = cspace.obstacles()[i];
     for (std::size_t k = 0; k < ob.normals.size(); ++k)
       for (const Vec3& v : ob.vertices) {
@@ -261,14 +302,14 @@ double convex_part_thickness(const Task& task, const CSpace& cspace) {
 // Convex C-space parts eroded by the cube of half size *h; a thin or sharp part may need a smaller cube (*h
 // is halved until every part erodes).
 std::vector<std::vector<Vec3>> eroded_cspace_parts(const Task& task, const CSpace& cspace, double tolerance,
-                                                   double* h) {
+                                                   const std::vector<bool>& cube_parts, double* h) {
   std::vector<std::vector<Vec3>> eroded(task.cspace.size());
   if (cspace.obstacles().size() != task.cspace.size())
     throw std::logic_error("mjcf_xml: C-obstacles do not match the task's cspace parts");
   for (int attempt = 0;; ++attempt) {
     bool ok = true;
     for (std::size_t i = 0; i < task.cspace.size() && ok; ++i) {
-      if (task.cspace[i].shape != ConvexPart::Shape::kConvex) continue;
+      if (task.cspace[i].shape != ConvexPart::Shape::kConvex || !cube_parts[i]) continue;
       auto points = erode(cspace.obstacles()[i], cspace, *h, tolerance);
       if (points)
         eroded[i] = std::move(*points);
@@ -286,8 +327,10 @@ std::vector<std::vector<Vec3>> eroded_cspace_parts(const Task& task, const CSpac
 struct SceneLayout {
   bool cspace_form = false;
   double scale = 0, s = 0, h = 0, wall = 0;
-  std::vector<std::vector<Vec3>> eroded;  // convex C-space parts (C-space form)
-  std::vector<ErodedPart> eroded_parts;   // the same as half-spaces (empty for boxes)
+  std::vector<std::vector<Vec3>> eroded;  // convex C-space parts as emitted (C-space form)
+  std::vector<ErodedPart> eroded_parts;   // cube-eroded ones as half-spaces (empty for boxes and copies)
+  std::vector<int> copy_bit;              // per C-space part: the bit it shares with its robot copy (0: none)
+  std::vector<std::vector<Vec3>> copies;  // per C-space part: its robot copy's vertices (robot frame)
   std::vector<AxisBox> grown;             // C-space boxes before shrinking by h (C-space form)
 };
 
@@ -325,7 +368,9 @@ void write_settings(std::ostream& out, const Task& task, const MjcfOptions& opti
   const int env_geoms =
       l.cspace_form ? static_cast<int>(task.cspace.size()) : static_cast<int>(task.environment.size());
   const int wall_geoms = task.bounds ? 6 : 0;
-  const int pairs = robot_geoms * env_geoms + wall_geoms;
+  const int copy_geoms =
+      static_cast<int>(std::count_if(l.copy_bit.begin(), l.copy_bit.end(), [](int b) { return b != 0; }));
+  const int pairs = robot_geoms * env_geoms + wall_geoms + copy_geoms;
   const int nconmax = std::clamp(8 * pairs, 64, 256);
   out << "  <size nconmax=\"" << nconmax << "\" njmax=\"" << 3 * nconmax << "\"/>\n";
 
@@ -347,8 +392,10 @@ void write_assets(std::ostream& out, const Task& task, const SceneLayout& l) {
   meshes.s = l.s;
   if (l.cspace_form) {
     for (std::size_t i = 0; i < task.cspace.size(); ++i)
-      if (task.cspace[i].shape == ConvexPart::Shape::kConvex)
+      if (task.cspace[i].shape == ConvexPart::Shape::kConvex) {
         meshes.mesh_asset("cspace" + std::to_string(i), l.eroded[i]);
+        if (l.copy_bit[i] != 0) meshes.mesh_asset("robot_copy" + std::to_string(i), l.copies[i]);
+      }
   } else {
     for (std::size_t i = 0; i < task.environment.size(); ++i)
       if (task.environment[i].shape == ConvexPart::Shape::kConvex)
@@ -379,7 +426,11 @@ void write_environment(Writer& w, const Task& task, const SceneLayout& l) {
     const ConvexPart& p = task.cspace[i];
     const std::string name = "cspace" + std::to_string(i);
     if (p.shape != ConvexPart::Shape::kBox) {
-      w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
+      if (l.copy_bit[i] != 0)
+        w.mesh_geom(name, p.key + ", shrunk toward a centre; meets only robot_copy" + std::to_string(i),
+                    p.friction, 0, l.copy_bit[i], kEnvRgba, in2);
+      else
+        w.mesh_geom(name, p.key + ", eroded by the cube", p.friction, 0, kPartBit, kEnvRgba, in2);
       continue;
     }
     std::string note = p.key;
@@ -435,6 +486,12 @@ void write_robot(Writer& w, const Task& task, const MjcfOptions& options, const 
   if (l.cspace_form) {
     w.box("robot_cube", "the C-space point, thickened to a cube of half size h", cube, 0, 0,
           kPartBit | kReferenceBit, 0, kRobotRgba, in3);
+    for (std::size_t i = 0; i < l.copy_bit.size(); ++i)
+      if (l.copy_bit[i] != 0)
+        w.mesh_geom("robot_copy" + std::to_string(i),
+                    "the C-space point, thickened to a small reflected copy of cspace[" + std::to_string(i) +
+                        "]: with the part shrunk toward the same centre they sum to the part exactly",
+                    0, l.copy_bit[i], 0, kRobotRgba, in3);
   } else {
     for (std::size_t i = 0; i < task.robot.size(); ++i) {
       const ConvexPart& p = task.robot[i];
@@ -466,14 +523,33 @@ SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
   SceneLayout l;
   l.cspace_form = !task.physical();
   l.scale = loaded.cspace.scale();
-  l.h = reference_half_size(task, l.scale, l.cspace_form);
-  if (l.cspace_form) l.h = std::min(l.h, 0.25 * convex_part_thickness(task, loaded.cspace));
-  if (l.cspace_form) l.eroded = eroded_cspace_parts(task, loaded.cspace, 1e-9 * l.scale, &l.h);
-  if (l.cspace_form)
-    for (std::size_t i = 0; i < task.cspace.size(); ++i)
-      l.eroded_parts.push_back(task.cspace[i].shape == ConvexPart::Shape::kConvex
+  // Which convex C-space parts get a robot copy; the cube meets the others and every box.
+  std::vector<bool> cube_parts(task.cspace.size(), true);
+  l.copy_bit.assign(task.cspace.size(), 0);
+  if (l.cspace_form && options.convex_copies) {
+    int k = 0;
+    for (std::size_t i = 0; i < task.cspace.size() && k < kMaxConvexCopies; ++i)
+      if (task.cspace[i].shape == ConvexPart::Shape::kConvex) {
+        l.copy_bit[i] = kFirstCopyBit << k++;
+        cube_parts[i] = false;
+      }
+  }
+  l.h = reference_half_size(task, l.scale, l.cspace_form, cube_parts);
+  if (l.cspace_form) l.h = std::min(l.h, 0.25 * convex_part_thickness(task, loaded.cspace, cube_parts));
+  if (l.cspace_form) l.eroded = eroded_cspace_parts(task, loaded.cspace, 1e-9 * l.scale, cube_parts, &l.h);
+  if (l.cspace_form) {
+    l.copies.resize(task.cspace.size());
+    for (std::size_t i = 0; i < task.cspace.size(); ++i) {
+      const bool convex = task.cspace[i].shape == ConvexPart::Shape::kConvex;
+      l.eroded_parts.push_back(convex && cube_parts[i]
                                    ? eroded_part(loaded.cspace.obstacles()[i], loaded.cspace, l.h)
                                    : ErodedPart{});
+      if (!convex || cube_parts[i]) continue;
+      HomotheticCopy c = homothetic_copy(loaded.cspace.obstacles()[i], loaded.cspace, 2 * l.h, l.scale);
+      l.eroded[i] = std::move(c.scene_part);
+      l.copies[i] = std::move(c.robot_copy);
+    }
+  }
   // Walls: thick enough that the shrunk wall keeps half its thickness (h <= 0.05 scale) and the robot cannot
   // tunnel through at simulated speeds.
   l.wall = 0.2 * l.scale;
@@ -492,7 +568,11 @@ SceneLayout scene_layout(const LoadedTask& loaded, const MjcfOptions& options) {
 std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, SceneInfo* info) {
   const Task& task = loaded.task;
   const SceneLayout l = scene_layout(loaded, options);
-  if (info) *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown, l.eroded_parts};
+  if (info) {
+    *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown, l.eroded_parts};
+    info->convex_copies =
+        static_cast<int>(std::count_if(l.copy_bit.begin(), l.copy_bit.end(), [](int b) { return b != 0; }));
+  }
   Writer w;
   w.s = l.s;
   std::ostringstream& out = w.out;
@@ -525,7 +605,10 @@ bool scene_part_reaches(const ErodedPart& part, const Vec3& x, double reach, dou
   return !polytope_vertices(normals, offsets, tolerance).empty();
 }
 
-bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol) {
+namespace {
+
+// in_convex_cut_back and in_convex_cut_back_interior; with only_interior the surface case is skipped.
+bool cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol, bool only_interior) {
   if (!info.cspace_form) return false;
   const double h = info.reference_half_size, rounding = 1e-9 * cspace.scale();
   for (std::size_t i = 0; i < info.eroded_parts.size() && i < cspace.obstacles().size(); ++i) {
@@ -535,12 +618,22 @@ bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3&
     double depth = std::numeric_limits<double>::infinity();  // inside the task's part (< 0: outside)
     for (std::size_t j = 0; j < p.normals.size(); ++j)
       depth = std::min(depth, p.offsets[j] - p.normals[j].dot(x));
-    if (depth < -tol) continue;
+    if (depth < -tol || (only_interior && depth <= tol)) continue;
     if (depth > tol ? !scene_part_reaches(part, x, std::max(0.0, h - tol), rounding)
                     : !scene_part_reaches(part, x, h + tol, rounding))
       return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol) {
+  return cut_back(info, cspace, x, tol, false);
+}
+
+bool in_convex_cut_back_interior(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol) {
+  return cut_back(info, cspace, x, tol, true);
 }
 
 void write_mjcf(const LoadedTask& task, const std::filesystem::path& file, const MjcfOptions& options) {

@@ -77,6 +77,11 @@ struct MjcfOptions {
   // numeric that switches it on, with tolerance tau = this x scale (m). Off by default (the exporter's tests
   // check raw box-box contacts); the rollouts set it (SimOptions::scene).
   double seam_filter_relative = 0;
+  // C-space form: each convex C-space part (up to 29) meets its own robot geom, a small copy of the part, and
+  // is emitted shrunk toward the copy's centre, so that the scene's part is the task's exactly
+  // (docs/mujoco-scene.md "Convex C-space parts"). Off: the part is eroded by the cube and the scene cuts it
+  // back near its sharp edges and corners (in_convex_cut_back); kept for the tests that show the cut-back.
+  bool convex_copies = true;
 };
 
 // The soft-surface-layer scene: kSoftLayer* on top of the defaults.
@@ -99,8 +104,11 @@ struct SceneInfo {
   // C-space form: per task.cspace part, the box emitted before shrinking by h (task units): the part's box
   // grown into its neighbours (MjcfOptions::close_seams), or the bounding box of a convex part.
   std::vector<AxisBox> cspace_boxes;
-  // C-space form: per task.cspace part, its eroded half-spaces (empty for a box).
+  // C-space form: per task.cspace part, its eroded half-spaces (empty for a box and for a convex part met by
+  // a robot copy, MjcfOptions::convex_copies: both are represented exactly).
   std::vector<ErodedPart> eroded_parts;
+  // C-space form: how many convex parts meet a robot copy.
+  int convex_copies = 0;
 };
 
 // True when x is in the cut-back of a convex C-space part P (docs/mujoco-scene.md "Convex C-space parts"):
@@ -109,6 +117,11 @@ struct SceneInfo {
 // robot resting on the scene's surface below P's), or x lies on P's surface (within tol) but farther than tol
 // from the scene's part (a robot starting there is in the air). False for boxes and the physical form.
 bool in_convex_cut_back(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol);
+// The first case of in_convex_cut_back alone: x inside P by more than tol, not inside the scene's part by
+// more than tol. A robot there moves through empty scene where the task has solid (campaign task 224 of the
+// slanted seed 9: a spring slides off a ramp's slope onto the cube's shelf 9.5 mm below the slope's convex
+// edge, along it and out through the end face), so a rollout passing there is no outcome of the task.
+bool in_convex_cut_back_interior(const SceneInfo& info, const CSpace& cspace, const Vec3& x, double tol);
 
 // The MJCF text. Throws std::runtime_error if a convex C-space part is too thin to be represented.
 std::string mjcf_xml(const LoadedTask& task, const MjcfOptions& options = {}, SceneInfo* info = nullptr);

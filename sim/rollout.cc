@@ -359,6 +359,15 @@ MotionOutcome RolloutRunner::Impl::run_motion(const Motion& motion, int node_id,
       ++step;
       break;
     }
+    if (in_convex_cut_back_interior(scene.info(), scene.task().cspace, s.position(),
+                                    scene.atom_tolerance())) {
+      end = Termination::kUnstable;
+      s.failure =
+          "passed inside a convex C-space part where the scene cuts it back (near its edges and "
+          "corners that are not box-shaped: the scene does not represent the task there)";
+      ++step;
+      break;
+    }
     if (options.record_trajectory && step % options.trajectory_stride == 0)
       out->trajectory.push_back(
           {time_before + t + dt, motion_index, s.position(), sensed.position, s.data.get()->ncon > 0});

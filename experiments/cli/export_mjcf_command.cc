@@ -16,7 +16,8 @@ nlohmann::json export_mjcf_command(const LoadedTask& task, const std::filesystem
   return {{"task", task.task.name},
           {"output", output.string()},
           {"meters_per_unit", info.meters_per_unit},
-          {"reference_half_size", info.reference_half_size}};
+          {"reference_half_size", info.reference_half_size},
+          {"convex_copies", info.convex_copies}};
 }
 
 void add_export_mjcf_command(CLI::App& app, CommandState& state) {

@@ -144,6 +144,20 @@ TEST(SoundnessReproducers, SpringServoCoastCoversARimDeparture) {
   expect_sound(r);
 }
 
+// The rollouts' scene at a ramp's sharp edge (slanted campaign seed 9, task 224): a spring pulls the robot up
+// a slope and over the ramp's high edge, where the slope meets the vertical front face at 74 degrees, toward
+// a target 2.2 mm in front of that face. The cube-eroded ramp was cut back there (a shelf 9.5 mm below the
+// edge): every rollout slid along it and one stuck on the front face outside the prediction. With the ramp
+// met by its reflected copy every rollout must be stable and every end inside the prediction; the goal is
+// the start point, which no rollout keeps, so unreliable.
+TEST(SoundnessReproducers, ARampsSharpEdgeIsExactInTheRolloutsScene) {
+  const ValidationResult r = validate_file("slanted9_224.yaml", "s", 150, 12587370737594032260ULL);
+  EXPECT_EQ(r.unstable, 0);
+  EXPECT_FALSE(r.prediction.reliable);
+  EXPECT_EQ(r.successes, 0);
+  expect_sound(r);
+}
+
 // Class B for springs (campaign seed 3, task 10): a spring slides along the floor into a wall at mu .72 and
 // some rollouts hop onto the wall above the edge and stick there, so the goal (the floor) is missed. Physics
 // says unreliable (rollouts fail); every end must lie in the prediction, the wall ends within the lift bound.

@@ -190,8 +190,8 @@ class Probe {
   // margin: the geom margin as a fraction of delta (task units, 1e-3 of the scene scale). The default,
   // delta/2, leaves contacts within the margin reportable while a point more than delta from the surface
   // reports none, even for a collider that measured separation along an axis rather than Euclidean.
-  explicit Probe(const LoadedTask& task, double margin = 0.5) : task_(task) {
-    xml_ = mjcf_xml(task, {}, &info_);
+  explicit Probe(const LoadedTask& task, double margin = 0.5, const MjcfOptions& options = {}) : task_(task) {
+    xml_ = mjcf_xml(task, options, &info_);
     model_ = MujocoModel::load_xml_string(xml_);
     s_ = info_.meters_per_unit;
     delta_ = 1e-3 * task.cspace.scale();
@@ -430,16 +430,22 @@ TEST(MjcfExport, BoxScenesMatchTheCSpaceExactly) {
 }
 
 // Convex parts go to MuJoCo as meshes (MPR, inexact depth). In physical form the mesh is the part itself, so
-// contact still happens exactly inside the C-obstacle; in C-space form the part is eroded by the cube, and
-// the re-grown part is an inner approximation that misses only points within sqrt(3) h of the boundary.
-TEST(MjcfExport, ConvexScenesAgreeAwayFromTheBoundary) {
+// contact still happens exactly inside the C-obstacle; so it does in C-space form, where each convex part
+// meets its own reflected copy (MjcfOptions::convex_copies). Eroded by the cube instead, the re-grown part is
+// an inner approximation that misses only points within sqrt(3) h of the boundary.
+class ConvexScenes : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ConvexScenes, AgreeWithTheCSpaceAwayFromTheBoundary) {
+  MjcfOptions options;
+  options.convex_copies = GetParam();
   for (const NamedTask& t : inline_tasks()) {
     if (all_boxes(t.task->task)) continue;
     SCOPED_TRACE(t.name);
     const LoadedTask& task = *t.task;
-    Probe probe(task);
+    Probe probe(task, 0.5, options);
     const double h = probe.info().reference_half_size;
-    const double slack = task.task.physical() ? probe.delta() : std::sqrt(3.0) * h + probe.delta();
+    const bool exact = task.task.physical() || options.convex_copies;
+    const double slack = exact ? probe.delta() : std::sqrt(3.0) * h + probe.delta();
     std::mt19937 rng(777);
     const AxisBox box = probe.sample_box();
     std::uniform_real_distribution<double> u01(0, 1);
@@ -462,6 +468,11 @@ TEST(MjcfExport, ConvexScenesAgreeAwayFromTheBoundary) {
     EXPECT_GT(free, 100);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(MjcfExport, ConvexScenes, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return std::string(info.param ? "ReflectedCopies" : "CubeErosion");
+                         });
 
 // The deepest contact (normal pointing toward the robot, depth in task units) with the robot at p.
 struct DeepestContact {
@@ -559,13 +570,22 @@ strategies: {down: [v1]}
 // to the floor corner (10, y, 0), 1 / sqrt(1.09) (below the low end's height 1), so h is a quarter of that,
 // not a quarter of 4 (the scene's 0.05 x scale = 0.86 would otherwise decide, and eroding the ramp by a
 // cube of half size 0.86 leaves nothing of it where it is under about 1.9 thick).
+// With reflected copies (the default) the cube never meets the ramp, and h is the scene's 0.05 x scale.
 TEST(MjcfExport, AConvexPartsThinEndBoundsTheCube) {
   const auto ramp = ramp_task(4, 1);
+  MjcfOptions cube_erosion;
+  cube_erosion.convex_copies = false;
   SceneInfo info;
-  const std::string xml = mjcf_xml(*ramp, {}, &info);
+  const std::string xml = mjcf_xml(*ramp, cube_erosion, &info);
   EXPECT_NEAR(info.reference_half_size, 0.25 / std::sqrt(1.09), 1e-12);
+  EXPECT_EQ(info.convex_copies, 0);
   EXPECT_GT(0.05 * ramp->cspace.scale(), 0.8);  // the bound the thin end replaces
   EXPECT_NO_THROW(MujocoModel::load_xml_string(xml));
+  SceneInfo copies_info;
+  const std::string copies_xml = mjcf_xml(*ramp, {}, &copies_info);
+  EXPECT_DOUBLE_EQ(copies_info.reference_half_size, 0.05 * ramp->cspace.scale());
+  EXPECT_EQ(copies_info.convex_copies, 1);
+  EXPECT_NO_THROW(MujocoModel::load_xml_string(copies_xml));
 }
 
 // The scene's ramp is (ramp eroded by the cube) + cube. Below the convex edge where the slope (rising .3 per
@@ -576,8 +596,10 @@ TEST(MjcfExport, AConvexPartsThinEndBoundsTheCube) {
 // face they are not.
 TEST(MjcfExport, PointsWhereTheSceneCutsBackAConvexPart) {
   const auto ramp = ramp_task(1, 4);
+  MjcfOptions cube_erosion;
+  cube_erosion.convex_copies = false;
   SceneInfo info;
-  mjcf_xml(*ramp, {}, &info);
+  mjcf_xml(*ramp, cube_erosion, &info);
   const double h = info.reference_half_size, tol = 1e-4 * ramp->cspace.scale();
   ASSERT_NEAR(h, 0.25 / std::sqrt(1.09), 1e-12);  // the low end's thickness bounds it
   ASSERT_EQ(info.eroded_parts.size(), 1u);
@@ -597,6 +619,39 @@ TEST(MjcfExport, PointsWhereTheSceneCutsBackAConvexPart) {
   SceneInfo box_info;
   mjcf_xml(*hole, {}, &box_info);
   EXPECT_FALSE(in_convex_cut_back(box_info, hole->cspace, Vec3(0, -4, -1.5), 1e-4 * hole->cspace.scale()));
+  // Met by its reflected copy the ramp has no cut-back.
+  SceneInfo copies_info;
+  mjcf_xml(*ramp, {}, &copies_info);
+  for (const Vec3& x : {Vec3(10 - 0.02 * h, 2, 4 - 0.3 * h), Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h),
+                        Vec3(10 - 0.02 * h, 2, 4 - 0.006 * h)}) {
+    EXPECT_FALSE(in_convex_cut_back(copies_info, ramp->cspace, x, tol)) << x.transpose();
+    EXPECT_FALSE(in_convex_cut_back_interior(copies_info, ramp->cspace, x, tol)) << x.transpose();
+  }
+  EXPECT_TRUE(in_convex_cut_back_interior(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.6 * h), tol));
+  EXPECT_FALSE(in_convex_cut_back_interior(info, ramp->cspace, Vec3(10 - 0.02 * h, 2, 4 - 0.006 * h), tol));
+}
+
+// At the ramp's sharp edge (the slope rising .3 per unit to z = 4 meets the end face x = 10 at 73 degrees),
+// the reflected copy meets the scene's part where the robot point enters the task's ramp: a point 3 delta
+// inside both faces is in contact, one 3 delta outside either face is not. The cube-eroded scene has no
+// contact at the inside point (its surface runs .6 h below the edge there).
+TEST(MjcfExport, AReflectedCopyMeetsASharpEdgeExactly) {
+  const auto ramp = ramp_task(1, 4);
+  Probe probe(*ramp);
+  ASSERT_EQ(probe.info().convex_copies, 1);
+  const double d = probe.delta();
+  const double slope_z = 1 + 0.3 * (10 - 3 * d);  // the slope's height at x = 10 - 3 d
+  const Vec3 inside(10 - 3 * d, 2, slope_z - 3 * d * std::sqrt(1.09));
+  const Vec3 above(10 - 3 * d, 2, slope_z + 3 * d * std::sqrt(1.09));
+  const Vec3 beyond(10 + 3 * d, 2, 4 - 3 * d);
+  EXPECT_FALSE(probe.contacts(inside).empty());
+  EXPECT_LT(min_of(probe.contacts(inside)), 0);
+  EXPECT_TRUE(probe.contacts(above).empty());
+  EXPECT_TRUE(probe.contacts(beyond).empty());
+  MjcfOptions cube_erosion;
+  cube_erosion.convex_copies = false;
+  Probe cube_probe(*ramp, 0.5, cube_erosion);
+  EXPECT_TRUE(cube_probe.contacts(inside).empty());
 }
 
 TEST(MjcfExport, HalfSizeAndShrinking) {
