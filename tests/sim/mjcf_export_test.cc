@@ -654,6 +654,36 @@ TEST(MjcfExport, AReflectedCopyMeetsASharpEdgeExactly) {
   EXPECT_TRUE(cube_probe.contacts(inside).empty());
 }
 
+// Collision bits give 29 convex parts their reflected copies; a 30th and 31st are eroded by the cube and keep
+// the cube-erosion rules (their cut-back is reported, the copied parts have none). Thirty-one ridges, each a
+// triangular prism 1 wide and .5 high, stand on the floor 2 apart.
+TEST(MjcfExport, ConvexPartsBeyondTheCollisionBitsAreErodedByTheCube) {
+  std::ostringstream yaml;
+  yaml << "name: ridges\nunits: in\nfriction: 0.3\n"
+       << "uncertainty: {eps_s: 0.1, eps_p: 0.1, theta_v: 0.1, theta_f: 0.05}\ncspace:\n";
+  for (int i = 0; i < 31; ++i) {
+    const double x = 2.0 * i;
+    yaml << "  - convex: {vertices: [[" << x << ", 0, 0], [" << x + 1 << ", 0, 0], [" << x + 0.5
+         << ", 0, 0.5], [" << x << ", 2, 0], [" << x + 1 << ", 2, 0], [" << x + 0.5 << ", 2, 0.5]]}\n";
+  }
+  yaml << "bounds: {min: [-1, -1, 0], max: [62, 3, 3]}\nstart: {point: [-0.5, 1, 0]}\n"
+       << "goal: {point: [-0.5, 1, 0]}\nmotions: {v1: {damper: [0, 0, -1]}}\nstrategies: {down: [v1]}\n";
+  const auto task = load_task_from_string(yaml.str(), "ridges.yaml");
+  SceneInfo info;
+  const std::string xml = mjcf_xml(*task, {}, &info);
+  EXPECT_EQ(info.convex_copies, 29);
+  ASSERT_EQ(info.eroded_parts.size(), 31u);
+  for (std::size_t i = 0; i < 31; ++i) EXPECT_EQ(info.eroded_parts[i].normals.empty(), i < 29) << i;
+  EXPECT_NE(xml.find("robot_copy28"), std::string::npos);
+  EXPECT_EQ(xml.find("robot_copy29"), std::string::npos);
+  EXPECT_NO_THROW(MujocoModel::load_xml_string(xml));
+  // Just inside a ridge's apex (x + .5, z = .5): exact for a copied ridge, in the cube's cut-back for the
+  // last.
+  const double tol = 1e-4 * task->cspace.scale();
+  EXPECT_FALSE(in_convex_cut_back(info, task->cspace, Vec3(0.5, 1, 0.5 - 3 * tol), tol));
+  EXPECT_TRUE(in_convex_cut_back(info, task->cspace, Vec3(60.5, 1, 0.5 - 3 * tol), tol));
+}
+
 TEST(MjcfExport, HalfSizeAndShrinking) {
   const auto hole = load_task_from_string(test::kHoleYaml, "hole.yaml");
   SceneInfo info;
