@@ -334,6 +334,11 @@ struct SceneLayout {
   std::vector<AxisBox> grown;             // C-space boxes before shrinking by h (C-space form)
 };
 
+// How many convex C-space parts the layout gives a robot copy.
+int copy_count(const SceneLayout& l) {
+  return static_cast<int>(std::count_if(l.copy_bit.begin(), l.copy_bit.end(), [](int b) { return b != 0; }));
+}
+
 // The file's opening comment: units, scale, form and h.
 void write_header(std::ostream& out, const Task& task, const SceneLayout& l) {
   out << "<!-- cmt export-mjcf: task '" << comment_text(task.name) << "'";
@@ -368,9 +373,7 @@ void write_settings(std::ostream& out, const Task& task, const MjcfOptions& opti
   const int env_geoms =
       l.cspace_form ? static_cast<int>(task.cspace.size()) : static_cast<int>(task.environment.size());
   const int wall_geoms = task.bounds ? 6 : 0;
-  const int copy_geoms =
-      static_cast<int>(std::count_if(l.copy_bit.begin(), l.copy_bit.end(), [](int b) { return b != 0; }));
-  const int pairs = robot_geoms * env_geoms + wall_geoms + copy_geoms;
+  const int pairs = robot_geoms * env_geoms + wall_geoms + copy_count(l);
   const int nconmax = std::clamp(8 * pairs, 64, 256);
   out << "  <size nconmax=\"" << nconmax << "\" njmax=\"" << 3 * nconmax << "\"/>\n";
 
@@ -570,8 +573,7 @@ std::string mjcf_xml(const LoadedTask& loaded, const MjcfOptions& options, Scene
   const SceneLayout l = scene_layout(loaded, options);
   if (info) {
     *info = SceneInfo{l.s, l.h, task.bounds ? l.wall : 0.0, l.cspace_form, l.grown, l.eroded_parts};
-    info->convex_copies =
-        static_cast<int>(std::count_if(l.copy_bit.begin(), l.copy_bit.end(), [](int b) { return b != 0; }));
+    info->convex_copies = copy_count(l);
   }
   Writer w;
   w.s = l.s;
