@@ -597,12 +597,12 @@ class SpringProjector {
     return {Vec3::Zero(), w(-alpha, c), w(-alpha / 2, r), w(alpha / 2, r), w(alpha, c)};
   }
 
-  // slide_wedge toward edge e from seg[a, b], falling back to the outward half-disk of radius tau V, in the
-  // triangle −2c t, 2c t, 2c out (|x| + y <= 2c on it).
-  std::vector<Vec3> rim_sector(const Edge& e, int fi, const Vec3& a, const Vec3& b) const {
+  // slide_wedge toward edge e from conv(pts) (points of the edge), falling back to the outward half-disk of
+  // radius tau V, in the triangle −2c t, 2c t, 2c out (|x| + y <= 2c on it).
+  std::vector<Vec3> rim_sector(const Edge& e, int fi, const std::vector<Vec3>& pts) const {
     const Vec3 t = (e.b - e.a).normalized(), out = -into_face(e, fi);
-    const double c = coast_at({a, b});
-    return slide_wedge(fi, {a, b}, c, {-2 * c * t, 2 * c * t, 2 * c * out});
+    const double c = coast_at(pts);
+    return slide_wedge(fi, pts, c, {-2 * c * t, 2 * c * t, 2 * c * out});
   }
 
   // slide_wedge from conv(pts) on face fi, falling back to the square circumscribing the disk of radius tau
@@ -625,15 +625,16 @@ class SpringProjector {
   }
 
   // Servo coast of springs (docs/verifier.md "Servo coast of springs"): a robot that leaves `src` at a
-  // sliding velocity u keeps it for about tau, so it flies from src + conv(0, tau u): one flight per set of
-  // departure displacements (velocity_fly grows each region by it); with none, the first-order flight.
+  // sliding velocity u keeps it for about tau, so it flies from src + conv(0, tau u): one flight per face it
+  // may slide on (velocity_fly grows each piece's region by that face's departure displacements of the
+  // piece); with none, the first-order flight.
   void coast_fly(const std::vector<Point3>& src, int source_face,
-                 const std::vector<std::vector<Vec3>>& departures) {
+                 const std::vector<CoastDeparture>& departures) {
     if (departures.empty()) {
       fly(src, source_face);
       return;
     }
-    for (const std::vector<Vec3>& d : departures)
+    for (const CoastDeparture& d : departures)
       absorb(velocity_fly(reached_impl_, src, source_face, velocity_, d));
   }
 
@@ -744,10 +745,12 @@ class SpringProjector {
       // Servo coast: at a convex edge the robot may arrive sliding on a face toward it (may_approach) and
       // leave at that velocity: one departure wedge per such face, in its plane. (Sliding along the edge,
       // its coast is contact motion, which the first-order edge model bounds; not covered, as for dampers.)
-      std::vector<std::vector<Vec3>> departures;
+      std::vector<CoastDeparture> departures;
       if (e.shape == EdgeShape::kConvex)
         for (int g : e.faces)
-          if (may_approach(e, g, a, b)) departures.push_back(rim_sector(e, g, a, b));
+          if (may_approach(e, g, a, b))
+            departures.push_back(
+                [this, &e, g](const std::vector<Vec3>& piece) { return rim_sector(e, g, piece); });
       coast_fly(src, -1, departures);
     }
   }
@@ -852,9 +855,12 @@ class SpringProjector {
     }
     // Servo coast: one departure wedge per face at the vertex that the robot may slide on, in its plane (a
     // robot that arrived along an edge: its coast past the vertex is not covered, as for dampers).
-    std::vector<std::vector<Vec3>> departures;
+    std::vector<CoastDeparture> departures;
     for (int f : vx.faces)
-      if (slides_on(f)) departures.push_back(face_sector(f, {vx.point}));
+      if (slides_on(f)) {
+        std::vector<Vec3> sector = face_sector(f, {vx.point});
+        departures.push_back([sector](const std::vector<Vec3>&) { return sector; });
+      }
     coast_fly({exact(vx.point)}, -1, departures);
   }
 

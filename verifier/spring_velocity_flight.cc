@@ -12,7 +12,8 @@
 // Servo coast (docs/verifier.md "Servo coast of springs"): a robot that leaves at a sliding velocity u keeps
 // it for about the servo's time constant tau; free of contact its position is x0 + a u + (a first-order
 // displacement), a in [0, tau] (the rollouts' servo, as for dampers). With `departure` the coast
-// displacements tau u (S = conv(0, departure)), each piece's region is grown to region + S: every support
+// displacements tau u of that piece's points (S = conv(0, departure(piece)): a piece's own wedge is
+// narrower than the whole source's), each piece's region is grown to region + S: every support
 // and every invariant half-space by the support of S. Which faces a flight cannot land on is decided for
 // the piece itself, as without the coast.
 #include <algorithm>
@@ -61,7 +62,7 @@ bool touches_only_at_tips(const Face& f, const std::vector<Vec3>& piece, const T
 
 // One piece's reach (see the file comment) into `regions` / `lowers`.
 void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int source_face,
-               const VelocitySpring& m, double r_lower, const std::vector<Vec3>& departure,
+               const VelocitySpring& m, double r_lower, const CoastDeparture& coast,
                std::map<int, std::vector<Polygon2>>* regions, std::map<int, Points2>* lowers) {
   const double scale = g.cspace->scale();
   const double eps = m.u.eps_s;
@@ -146,6 +147,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
     }
   }
   // Servo coast: the region + conv(0, departure) (the file comment).
+  const std::vector<Vec3> departure = coast ? coast(piece) : std::vector<Vec3>{};
   std::vector<HalfSpace> clip = m.bounds;
   if (!departure.empty()) {
     auto coast_support = [departure](const Vec3& w) {
@@ -182,7 +184,7 @@ void fly_piece(const ReachedSet::Impl& g, const std::vector<Vec3>& piece, int so
 
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& g, const std::vector<Point3>& src,
                                     int source_face, const VelocitySpring& m,
-                                    const std::vector<Vec3>& departure) {
+                                    const CoastDeparture& departure) {
   const double scale = g.cspace->scale();
   const double delta = spring_spiral_deviation(m.u.theta_v);
   const double margin = kSlack * scale;

@@ -122,8 +122,8 @@ struct VerifyOptions {
   // (docs/verifier.md "Servo coast of springs"). 0: servo_coast alone bounds it.
   double spring_lag = 0;
   // Also bound velocity-model spring flights for the servo coast (servo_coast, spring_lag; docs/verifier.md
-  // "Servo coast of springs"). Off by default: it makes peg_in_hole_real `teach` a false alarm.
-  bool spring_coast = false;
+  // "Servo coast of springs"). false: the first-order flights of springs (dampers still coast).
+  bool spring_coast = true;
 };
 
 // The pieces of `final_set` outside the task's goal (within kGoalRelativeTolerance for 1-D and 0-D pieces):

@@ -1,10 +1,10 @@
 // `cmt soundness-campaign --tasks N [--first I] --seed S [-n ROLLOUTS] [--threads T] [--verifier-budget SEC]
-// [--no-minimize] [--false-alarm-budget N] [--out DIR] --json`: the random-task soundness campaign
-// (experiments/validation/soundness_campaign.h), with `cmt falsify`'s failure search as its false-alarm
-// check. Exit 0 when no soundness bug was found, 1 when one was (saved under DIR/bugs/ with its replay
-// command), 2 on bad usage. A task with more than kInconclusiveUnstableShare of its rollouts unstable and no
-// bug is counted inconclusive (saved under DIR/inconclusive/), as a timed-out one is counted, not scored.
-// Rerunning with the same seed and rollout count resumes from DIR/results.jsonl.
+// [--no-minimize] [--no-spring-coast] [--false-alarm-budget N] [--out DIR] --json`: the random-task soundness
+// campaign (experiments/validation/soundness_campaign.h), with `cmt falsify`'s failure search as its
+// false-alarm check. Exit 0 when no soundness bug was found, 1 when one was (saved under DIR/bugs/ with its
+// replay command), 2 on bad usage. A task with more than kInconclusiveUnstableShare of its rollouts unstable
+// and no bug is counted inconclusive (saved under DIR/inconclusive/), as a timed-out one is counted, not
+// scored. Rerunning with the same seed and rollout count resumes from DIR/results.jsonl.
 #include <iostream>
 #include <thread>
 
@@ -21,7 +21,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
     CampaignOptions campaign;
     std::string out = "out/soundness-campaign";
     std::string generator = "default";
-    bool no_minimize = false;
+    bool no_minimize = false, no_spring_coast = false;
     int threads = 0;
     int false_alarm_budget = 0;
   };
@@ -51,6 +51,10 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
   cmd->add_option("--out", o->out, "output folder: results.jsonl (one line per task) and bugs/")
       ->capture_default_str();
   cmd->add_flag("--no-minimize", o->no_minimize, "save bugs as generated, without shrinking them");
+  cmd->add_flag(
+      "--no-spring-coast", o->no_spring_coast,
+      "verify with first-order spring flights (cmt verify --no-spring-coast; a campaign resumes only "
+      "with its own setting)");
   cmd->add_option("--false-alarm-budget", o->false_alarm_budget,
                   "failure search rollouts (cmt falsify's) for each task verified unreliable whose rollouts "
                   "all succeeded (0: such tasks are saved under unreliable/ and counted, not searched)")
@@ -71,6 +75,7 @@ void add_soundness_campaign_command(CLI::App& app, CommandState& state) {
                             : o->generator == "slanted" ? CampaignGenerator::kSlanted
                                                         : CampaignGenerator::kDefault;
     o->campaign.minimize = !o->no_minimize;
+    o->campaign.spring_coast = !o->no_spring_coast;
     if (o->false_alarm_budget > 0)
       o->campaign.false_alarm_check = [budget = o->false_alarm_budget, threads = o->campaign.threads](
                                           const std::filesystem::path& file, std::uint64_t seed) {

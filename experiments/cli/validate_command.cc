@@ -112,7 +112,7 @@ void add_validate_command(CLI::App& app, CommandState& state) {
     int n = 1000, threads = 0, sticking_trials = 0, budget = ValidateOptions{}.counterexample_budget;
     double time_limit = kDefaultVerifyTimeLimit;
     std::uint64_t seed = 1;
-    bool ends = false, edr = false, spring_coast = false;
+    bool ends = false, edr = false, spring_coast = true;
     int per_world = ValidateEdrOptions{}.per_world, resolution = ValidateEdrOptions{}.resolution;
     int refine_depth = ValidateEdrOptions{}.refine_depth;
   };
@@ -135,8 +135,9 @@ void add_validate_command(CLI::App& app, CommandState& state) {
       ->capture_default_str();
   cmd->add_flag("--ends", o->ends, "list every observed motion end in the JSON");
   cmd->add_flag(
-      "--spring-coast", o->spring_coast,
-      "also bound spring flights for the servo coast (docs/verifier.md \"Servo coast of springs\")");
+      "--spring-coast,!--no-spring-coast", o->spring_coast,
+      "bound spring flights for the servo coast (docs/verifier.md \"Servo coast of springs\"; the default); "
+      "--no-spring-coast: their first-order flights");
   cmd->add_option("--time-limit", o->time_limit,
                   "wall-clock seconds the verifier may run (default " +
                       std::to_string(kDefaultVerifyTimeLimit) +

@@ -111,9 +111,9 @@ struct VerifyCli {
   bool reached = false;
   SpringModel spring_model = SpringModel::kVelocity;
   double stop_relative_speed = kStopRelativeSpeed;
-  double contact_lift = -1;   // < 0: the rollouts' scene (rollout_contact_lift)
-  double servo_coast = -1;    // < 0: the rollouts' scene (rollout_servo_coast)
-  bool spring_coast = false;  // VerifyOptions::spring_coast
+  double contact_lift = -1;  // < 0: the rollouts' scene (rollout_contact_lift)
+  double servo_coast = -1;   // < 0: the rollouts' scene (rollout_servo_coast)
+  bool spring_coast = true;  // VerifyOptions::spring_coast
   double time_limit = kDefaultVerifyTimeLimit;
   bool edr = false;
   int resolution = EdrVerdictRequest{}.resolution;
@@ -217,9 +217,10 @@ void add_verify_command(CLI::App& app, CommandState& state) {
                   "slides over; default: the rollouts' MuJoCo scene, (m/b) V (docs/verifier.md \"Servo "
                   "coast\"); 0 = Buckley's first-order model")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--spring-coast", options->spring_coast,
-                "also bound velocity-model spring flights for the servo coast past convex rims and vertices "
-                "(docs/verifier.md \"Servo coast of springs\"); off by default");
+  cmd->add_flag("--spring-coast,!--no-spring-coast", options->spring_coast,
+                "bound velocity-model spring flights for the servo coast past convex rims and vertices "
+                "(docs/verifier.md \"Servo coast of springs\"; the default); --no-spring-coast: their "
+                "first-order flights");
   cmd->add_option("--time-limit", options->time_limit,
                   "wall-clock seconds the verifier may run (default " +
                       std::to_string(kDefaultVerifyTimeLimit) +

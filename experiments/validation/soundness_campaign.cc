@@ -392,6 +392,7 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
         o.threads = options.threads;
         o.mode = SampleMode::kExtreme;
         o.counterexample_budget = 0;  // soundness is the question here, not the search for failures
+        o.spring_coast = options.spring_coast;
         o.after_verify = done;
         const ValidationResult r = run_validation(task, "s", o);
         nlohmann::json j;
@@ -428,7 +429,8 @@ CampaignRecord validate_text(const std::string& yaml, const CampaignOptions& opt
   rec.verify_seconds = j["verify_seconds"];
   rec.status = campaign_status(rec.rollouts, rec.unstable, rec.outside, rec.soundness_bug);
   rec.replay = "cmt validate TASK --strategy s -n " + std::to_string(options.rollouts) + " --seed " +
-               std::to_string(j["seed"].get<std::uint64_t>()) + " --mode extreme";
+               std::to_string(j["seed"].get<std::uint64_t>()) + " --mode extreme" +
+               (options.spring_coast ? "" : " --no-spring-coast");
   return rec;
 }
 
@@ -481,7 +483,8 @@ std::map<int, nlohmann::json> recorded(const std::filesystem::path& file, const 
     try {
       const nlohmann::json j = nlohmann::json::parse(line);
       if (j.value("seed", std::uint64_t{0}) == options.seed && j.value("n", 0) == options.rollouts &&
-          j.value("generator", "default") == campaign_generator_name(options.generator))
+          j.value("generator", "default") == campaign_generator_name(options.generator) &&
+          j.value("spring_coast", false) == options.spring_coast)  // lines without it: first order
         out[j["index"].get<int>()] = j;
     } catch (const std::exception&) {  // a line cut by a kill: that task runs again
     }
@@ -590,6 +593,7 @@ CampaignSummary run_soundness_campaign(const CampaignOptions& options,
       line["n"] = options.rollouts;
       if (options.generator != CampaignGenerator::kDefault)
         line["generator"] = campaign_generator_name(options.generator);
+      line["spring_coast"] = options.spring_coast;
       log << json_text(line) << "\n" << std::flush;
     }
     ++sum.run;

@@ -55,6 +55,7 @@ struct CampaignOptions {
   int threads = 1;               // rollout threads (results are identical for every count)
   double verifier_budget = 120;  // s of wall clock per verification; a task over it is recorded, not scored
   bool minimize = true;          // shrink each bug before saving it
+  bool spring_coast = true;      // ValidateOptions::spring_coast (false: first-order spring flights)
   std::filesystem::path out = "out/soundness-campaign";  // results.jsonl, bugs/, unreliable/
   // The false-alarm check (docs/validation.md "False alarms"): a task verified unreliable whose stable
   // rollouts all succeeded is saved as unreliable/task-<i>.yaml and, when this is set, searched for a

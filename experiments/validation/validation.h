@@ -55,7 +55,7 @@ struct ValidateOptions {
   // Per-atom stick/slide agreement table (experiments/validation/sticking_check.h): trials, 0 = skip.
   int sticking_trials = 0;
   // VerifyOptions::spring_coast for the prediction (docs/verifier.md "Servo coast of springs").
-  bool spring_coast = false;
+  bool spring_coast = true;
   // > 0: the verifier ran out of this wall-clock budget (s) elsewhere (experiments/common/verifier_budget.h):
   // it is not run; the prediction is empty and unreliable with failure "verifier: timed out after B s", every
   // end counts as unpredicted and no counterexample search runs.

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #include "verifier/internal/damper_flight.h"
@@ -55,11 +56,13 @@ Points2 velocity_reach_section(const ReachedSet::Impl& geometry, int fi, const V
 // source, g ∩ (conv(X ∪ B(p, eps_s)) ⊕ ball(delta (R + eps_s))) ∩ ball(p, min(R + 2 eps_s, reach)) ∩ (X +
 // cone(−a, theta_v + sigma + asin(eps_s / R_min))) ∩ the spiral regions (R: max |x − p| over X; a, sigma: X's
 // mean direction from p and angular radius about it). No occlusion (paths bend); no landing on a face the
-// flight meets only in the piece's own points. `departure` (servo coast, task units): the displacements tau
-// u of the velocities u the robot may leave with; every region grows by conv(0, departure).
+// flight meets only in the piece's own points. `departure` (servo coast, task units), given each piece's
+// points: the displacements tau u of the velocities u the robot may leave that piece with; the piece's
+// regions grow by conv(0, departure(piece)). Empty: the first-order flight.
+using CoastDeparture = std::function<std::vector<Vec3>(const std::vector<Vec3>& piece)>;
 std::vector<FlightHit> velocity_fly(const ReachedSet::Impl& geometry, const std::vector<Point3>& src,
                                     int source_face, const VelocitySpring& m,
-                                    const std::vector<Vec3>& departure = {});
+                                    const CoastDeparture& departure = {});
 
 // Sliding on face fi from the convex chart piece `part` (1, 2 or more points): the face ∩ (conv(part ∪
 // disk(p', eps_s)) ⊕ disk(L)) ∩ disk(p', max(d0, zone) + eps_s) ∩ the in-plane spiral regions ∩ (the forward
