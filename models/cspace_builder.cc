@@ -33,6 +33,7 @@
 #include "models/internal/exact_kernel.h"
 #include "models/task_error.h"
 #include "models/task_loader.h"
+#include "models/task_transform.h"
 
 namespace cmt {
 
@@ -875,6 +876,30 @@ class CSpaceBuilder {
   CSpace out_;
 };
 
-CSpace CSpace::build(const Task& task) { return CSpaceBuilder(task).build(); }
+// The C-space built in the task's own axes (Task::axes) and turned into the world: faces, edges, vertices,
+// C-obstacles and bounds mapped by the signed permutation `axes`, exactly. The scale and the atom order are
+// the own-axes build's, so a task turned together with its axes has the turned C-space atom for atom.
+CSpace CSpace::build(const Task& task) {
+  if (task.axes.isIdentity()) return CSpaceBuilder(task).build();
+  const Task own = geometry_in_own_axes(task);
+  CSpace c = CSpaceBuilder(own).build();
+  const Eigen::Matrix3d& r = task.axes;
+  const auto box = [&](const AxisBox& b) {
+    const Vec3 a = r * b.min, d = r * b.max;
+    return AxisBox{a.cwiseMin(d), a.cwiseMax(d)};
+  };
+  for (Face& f : c.faces_) {
+    f.normal = r * f.normal;
+    for (Vec3& p : f.polygon) p = r * p;
+  }
+  for (Edge& e : c.edges_) e.a = r * e.a, e.b = r * e.b;
+  for (Vertex& v : c.vertices_) v.point = r * v.point;
+  for (ConvexObstacle& o : c.obstacles_) {
+    for (Vec3& n : o.normals) n = r * n;
+    for (Vec3& p : o.vertices) p = r * p;
+  }
+  c.bounds_ = box(c.bounds_);
+  return c;
+}
 
 }  // namespace cmt

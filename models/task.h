@@ -139,6 +139,11 @@ struct Task {
   bool physical() const { return !robot.empty(); }
 
   std::optional<AxisBox> bounds;
+  // The task's own x, y and z axes in world coordinates (the columns; a signed permutation with det +1, the
+  // world axes by default). The C-space is built in these axes (CSpace::build): the convex decomposition of
+  // a non-convex face and the order of the atoms follow them, so a task turned together with its axes
+  // (task_transform.h) has the turned C-space, atom for atom (docs/task-format.md "axes").
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   Region start;
   std::vector<Region> goal;
   std::vector<Motion> motions;

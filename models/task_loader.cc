@@ -12,6 +12,7 @@
 
 #include "models/task_error.h"
 #include "models/task_ranges.h"
+#include "models/task_transform.h"
 #include "models/yaml_document.h"
 #include "models/yaml_node.h"
 
@@ -33,7 +34,7 @@ class Parser {
     Node root(root_node, "", &file_);
     if (!root_node.IsDefined() || root_node.IsNull()) root.fail("the file is empty");
     root.require_map({"name", "description", "units", "friction", "uncertainty", "dimension", "robot",
-                      "environment", "cspace", "bounds", "start", "goal", "motions", "strategies",
+                      "environment", "cspace", "bounds", "axes", "start", "goal", "motions", "strategies",
                       "model_error"});
     Task task;
     task.source_file = file_;
@@ -86,6 +87,7 @@ class Parser {
     }
     role_ = ModelCoordinate::Role::kConfiguration;
     if (root.has("bounds")) task.bounds = parse_box(root.at("bounds"), {"min", "max"});
+    if (root.has("axes")) task.axes = parse_axes(root.at("axes"));
     if (task.cspace.empty() && task.environment.empty() && !task.bounds)
       root.fail("no obstacles and no bounds: the configuration space has no contact surface");
 
@@ -246,6 +248,30 @@ class Parser {
     };
     if (dimension_ == 2) return Vec3(coordinate(0), planar_y, coordinate(1));
     return Vec3(coordinate(0), coordinate(1), coordinate(2));
+  }
+  // The task's own axes (Task::axes): three world vectors, its x, y and z axes, each a signed world axis,
+  // together a proper rotation; a planar task turns only about y, so its y axis is [0, 1, 0]. Always three
+  // numbers per axis, also in a planar task.
+  Eigen::Matrix3d parse_axes(const Node& n) const {
+    if (!n.is_sequence() || n.size() != 3)
+      n.fail("expected three axes [x axis, y axis, z axis], each [x, y, z]");
+    Eigen::Matrix3d r;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const Node axis = n.item(j);
+      if (!axis.is_sequence() || axis.size() != 3)
+        axis.fail("expected a world axis [x, y, z] such as [0, -1, 0]");
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double v = axis.item(i).number();
+        if (v != 0 && v != 1 && v != -1)
+          axis.item(i).fail("each entry is 0, 1 or -1 (an axis is a signed world axis)");
+        r(static_cast<int>(i), static_cast<int>(j)) = v;
+      }
+    }
+    if (!is_quarter_turn_rotation(r))
+      n.fail("the axes must be signed world axes forming a right-handed frame (a rotation by quarter turns)");
+    if (dimension_ == 2 && r.col(1) != Eigen::Vector3d::UnitY())
+      n.item(1).fail("a planar task turns only about y: its y axis is [0, 1, 0]");
+    return r;
   }
   // A direction (damper velocity, force cone axis), normalized.
   // `edr: true`: the motion carries the EDR termination predicate (task.h Motion::edr_signal).

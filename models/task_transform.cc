@@ -18,7 +18,9 @@ struct PlanarAwareTransform {
   Vec3 direction(const Vec3& d) const { return map.direction(d); }
 };
 
-bool signed_permutation(const Eigen::Matrix3d& r) {
+}  // namespace
+
+bool is_quarter_turn_rotation(const Eigen::Matrix3d& r) {
   for (int i = 0; i < 3; ++i) {
     int nonzero = 0;
     for (int j = 0; j < 3; ++j) {
@@ -30,6 +32,8 @@ bool signed_permutation(const Eigen::Matrix3d& r) {
   }
   return r.determinant() == 1;
 }
+
+namespace {
 
 AxisBox map_box(const AxisBox& b, const PlanarAwareTransform& m) {
   const Vec3 a = m.point(b.min), c = m.point(b.max);
@@ -81,7 +85,7 @@ TaskTransform TaskTransform::after(const TaskTransform& first) const {
 }
 
 Task transformed(const Task& task, const TaskTransform& map) {
-  if (!signed_permutation(map.rotation))
+  if (!is_quarter_turn_rotation(map.rotation))
     throw std::invalid_argument("task transform: the rotation must be a signed permutation with det +1");
   if (!(map.scale > 0)) throw std::invalid_argument("task transform: the scale must be positive");
   if (task.dimension == 2 && (map.rotation(1, 1) != 1 || map.offset.y() != 0))
@@ -108,6 +112,7 @@ Task transformed(const Task& task, const TaskTransform& map) {
     for (ConvexPart& p : out.robot) map_part(p, about_origin);
   }
   if (out.bounds) *out.bounds = map_box(*out.bounds, m);
+  out.axes = map.rotation * task.axes;
   map_region(out.start, m);
   for (Region& g : out.goal) map_region(g, m);
   for (Motion& mo : out.motions) {
@@ -117,6 +122,19 @@ Task transformed(const Task& task, const TaskTransform& map) {
   for (Strategy& s : out.strategies)
     for (StrategyNode& n : s.nodes)
       for (StrategyBranch& b : n.branches) map_termination(b.when, m);
+  return out;
+}
+
+Task geometry_in_own_axes(const Task& task) {
+  Task out = task;
+  out.axes = Eigen::Matrix3d::Identity();
+  if (task.axes.isIdentity()) return out;
+  TaskTransform to_own;
+  to_own.rotation = task.axes.transpose();
+  const PlanarAwareTransform m{to_own, task.dimension == 2};
+  for (auto* parts : {&out.robot, &out.environment, &out.cspace})
+    for (ConvexPart& p : *parts) map_part(p, m);
+  if (out.bounds) *out.bounds = map_box(*out.bounds, m);
   return out;
 }
 

@@ -29,6 +29,14 @@ struct TaskTransform {
   TaskTransform after(const TaskTransform& first) const;
 };
 
+// Whether r is a rotation by multiples of 90° about the axes: a signed permutation with det +1.
+bool is_quarter_turn_rotation(const Eigen::Matrix3d& r);
+
+// The geometry of a task (parts and bounds) in its own axes (Task::axes): every point x becomes
+// axes^T x, exactly (a signed permutation moves and negates coordinates, with no rounding); the returned
+// task's axes are the world axes. Regions, motions and strategies are left as they are.
+Task geometry_in_own_axes(const Task& task);
+
 // Throws std::invalid_argument when the rotation is not a proper signed permutation, or when a planar task
 // (dimension 2, extruded along y) would be turned out of its x-z plane. A task with model error becomes its
 // nominal slice, without model error.

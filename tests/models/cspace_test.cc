@@ -9,6 +9,7 @@
 
 #include "models/loaded_task.h"
 #include "models/task_loader.h"
+#include "models/task_transform.h"
 #include "tests/models/test_tasks.h"
 
 namespace cmt {
@@ -186,6 +187,55 @@ TEST(CSpace, HoleHasBuckleyTable63Counts) {
   EXPECT_DOUBLE_EQ(top_areas[1], 10.0);
   EXPECT_DOUBLE_EQ(top_areas[2], 60.0);  // 5 x 12
   EXPECT_DOUBLE_EQ(top_areas[3], 60.0);
+}
+
+// The faces of the top plane z = 0 that are 2 wide in x (the hole's width).
+int top_faces_two_wide_in_x(const CSpace& c) {
+  int n = 0;
+  for (const Face& f : c.faces()) {
+    if (f.normal.z() < 0.5 || f.offset != 0) continue;
+    double xmin = 1e9, xmax = -1e9;
+    for (const Vec3& p : f.polygon) xmin = std::min(xmin, p.x()), xmax = std::max(xmax, p.x());
+    if (xmax - xmin == 2) ++n;
+  }
+  return n;
+}
+
+// The hole's top annulus is square: a quarter turn about z maps it onto itself, so no decomposition into
+// Buckley's two large and two small faces follows the turn by geometry alone. Built in the task's own axes
+// (Task::axes), the turned task, turned together with its axes, has the turned C-space atom for atom.
+TEST(CSpace, ATaskTurnedWithItsAxesHasTheTurnedCSpaceAtomForAtom) {
+  const auto original = load_task_from_string(test::kHoleYaml, "hole.yaml");
+  const TaskTransform turn = TaskTransform::quarter_turns(2, 1);
+  Task turned_task = transformed(original->task, turn);
+  ASSERT_FALSE(turned_task.axes.isIdentity());
+  const CSpace& a = original->cspace;
+  const CSpace b = CSpace::build(turned_task);
+  ASSERT_EQ(a.faces().size(), b.faces().size());
+  ASSERT_EQ(a.edges().size(), b.edges().size());
+  ASSERT_EQ(a.vertices().size(), b.vertices().size());
+  EXPECT_EQ(a.scale(), b.scale());
+  for (std::size_t i = 0; i < a.faces().size(); ++i) {
+    const Face &f = a.faces()[i], &g = b.faces()[i];
+    EXPECT_EQ(turn.direction(f.normal), g.normal) << "face " << i;
+    EXPECT_EQ(f.offset, g.offset);
+    ASSERT_EQ(f.polygon.size(), g.polygon.size());
+    for (std::size_t k = 0; k < f.polygon.size(); ++k) EXPECT_EQ(turn.point(f.polygon[k]), g.polygon[k]);
+    EXPECT_EQ(f.edges, g.edges);
+    EXPECT_EQ(f.vertices, g.vertices);
+  }
+  for (std::size_t i = 0; i < a.edges().size(); ++i) {
+    EXPECT_EQ(turn.point(a.edges()[i].a), b.edges()[i].a) << "edge " << i;
+    EXPECT_EQ(turn.point(a.edges()[i].b), b.edges()[i].b);
+    EXPECT_EQ(a.edges()[i].shape, b.edges()[i].shape);
+  }
+  for (std::size_t i = 0; i < a.vertices().size(); ++i)
+    EXPECT_EQ(turn.point(a.vertices()[i].point), b.vertices()[i].point) << "vertex " << i;
+  // The world-axes build of the same turned geometry cuts the annulus along the world's y instead: its
+  // small faces (2 x 5) lie beside the hole in x, where the turned task's lie in front of and behind it.
+  turned_task.axes = Eigen::Matrix3d::Identity();
+  EXPECT_EQ(top_faces_two_wide_in_x(CSpace::build(turned_task)), 2);
+  EXPECT_EQ(top_faces_two_wide_in_x(b), 0);
 }
 
 TEST(CSpace, AtomIdsAreStable) {

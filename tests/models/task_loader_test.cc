@@ -81,6 +81,26 @@ TEST(TaskLoader, WrongType) {
   expect_error(replace(test::kHoleYaml, "units: in", "units: feet"), "units", "must be one of in, mm, m");
 }
 
+TEST(TaskLoader, ReadsTheTasksOwnAxes) {
+  const auto task = load_task_from_string(
+      replace(test::kHoleYaml, "start:", "axes: [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]\nstart:"), "hole.yaml");
+  Eigen::Matrix3d expected;
+  expected << 0, -1, 0, 1, 0, 0, 0, 0, 1;  // columns: the task's x, y and z axes
+  EXPECT_EQ(task->task.axes, expected);
+  EXPECT_TRUE(load_task_from_string(test::kHoleYaml, "hole.yaml")->task.axes.isIdentity());
+}
+
+TEST(TaskLoader, BadAxes) {
+  const auto with_axes = [](const std::string& axes) {
+    return replace(test::kHoleYaml, "start:", "axes: " + axes + "\nstart:");
+  };
+  expect_error(with_axes("[[1, 0, 0], [0, 1, 0]]"), "axes", "expected three axes");
+  expect_error(with_axes("[[1, 0, 0], [0, 1], [0, 0, 1]]"), "axes[1]", "expected a world axis");
+  expect_error(with_axes("[[1, 0, 0], [0, 0.5, 0], [0, 0, 1]]"), "axes[1][1]", "each entry is 0, 1 or -1");
+  expect_error(with_axes("[[1, 0, 0], [0, 1, 0], [0, 0, -1]]"), "axes", "right-handed");
+  expect_error(with_axes("[[1, 0, 0], [1, 0, 0], [0, 0, 1]]"), "axes", "right-handed");
+}
+
 TEST(TaskLoader, DegenerateBox) {
   expect_error(replace(test::kHoleYaml, "max: [-1, 6, 0]}", "max: [-1, 6, -2]}"), "cspace[0].box",
                "degenerate box: min z");
