@@ -214,8 +214,9 @@ class SpringProjector {
 
   // ---- adding ----
   // Widening counts the fixpoint rounds (work items) in which an atom grew, not the additions: one flight's
-  // pieces may add dozens of abutting slivers to an edge at once. Returns the round count after this growth
-  // (unchanged when the atom already grew in this work item).
+  // pieces may add dozens of abutting slivers to an edge at once. Growth of rounding size (below the
+  // propagation thresholds) counts no round: it differs between a task and its turned or scaled copy. Returns
+  // the round count after this growth (unchanged when the atom already grew in this work item).
   int grew_this_round(Growth& g) const {
     if (g.last_step == steps_) return -1;
     g.last_step = steps_;
@@ -225,7 +226,7 @@ class SpringProjector {
     ChartRegion added;
     if (!reached_impl_.add_region(fi, part, &added)) return;
     face_[fi].pending_new.join(added);
-    const int rounds = grew_this_round(face_[fi].growth);
+    const int rounds = added.wider_than(kRegionGrowthCells) ? grew_this_round(face_[fi].growth) : -1;
     if (rounds == kSpringWideningRounds) {  // widening, first stage: each region component's convex hull
       ++widened_;
       // Per component (outer boundary), not one hull of everything: a face may hold separate parts far
@@ -296,7 +297,7 @@ class SpringProjector {
     if (fresh < 0) return;
     if (fresh > 4 * kEdgeParamSlack || (added.size() == 1 && added[0].t0 == added[0].t1))
       for (const EdgeInterval& iv : added) edge_[ei].pending.push_back(iv);
-    const int rounds = fresh > 0 ? grew_this_round(edge_[ei].growth) : -1;
+    const int rounds = fresh > 4 * kEdgeParamSlack ? grew_this_round(edge_[ei].growth) : -1;
     // Widening, first stage: the hull [min t0, max t1] of what the edge holds.
     if (rounds == kSpringWideningRounds) {
       ++widened_;
