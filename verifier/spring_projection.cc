@@ -226,7 +226,9 @@ class SpringProjector {
     ChartRegion added;
     if (!reached_impl_.add_region(fi, part, &added)) return;
     face_[fi].pending_new.join(added);
-    const int rounds = added.wider_than(kRegionGrowthCells) ? grew_this_round(face_[fi].growth) : -1;
+    // The erosion test only where it can count (the face has not grown in this work item yet).
+    const bool counts = face_[fi].growth.last_step != steps_ && added.wider_than(kRegionGrowthCells);
+    const int rounds = counts ? grew_this_round(face_[fi].growth) : -1;
     if (rounds == kSpringWideningRounds) {  // widening, first stage: each region component's convex hull
       ++widened_;
       // Per component (outer boundary), not one hull of everything: a face may hold separate parts far
