@@ -19,6 +19,11 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kSlack = kVelocitySlack;
 // Grid of snap_outward, x scene scale.
 constexpr double kVelocitySnap = 1e-7;
+// Relative error bound of a support bound h(w) − lambda c evaluated in doubles, against the size of its
+// terms: the supports sum a few dot products of scene points with w (each within a few units in the last
+// place of |x| |w|, u = 1.1e-16), so 1e-12 (about 9,000 u) holds with a wide margin. The position-dependent
+// part of a section's margin: a task far from the world origin has larger terms, not larger sets.
+constexpr double kSupportRoundingRelative = 1e-12;
 
 // A convex chart polygon grown by kVelocitySnap x scale and its vertices rounded to the grid of that
 // spacing, then hulled: it contains the polygon (each vertex moves by at most spacing / sqrt 2 < the growth),
@@ -153,8 +158,19 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
   const Vec3& n = face.normal;
   const double c = face.offset, scale = g.cspace->scale();
   const double margin = kSlack * scale;
+  // Every point the sets' supports take (sources on the scene's atoms, their cones and disks, within a few
+  // scales of every face point) has norm at most `reach`.
+  double face_reach = 0;
+  for (const Vec3& q : face.polygon) face_reach = std::max(face_reach, q.norm());
+  const double reach = face_reach + 4 * scale;
+  // The margin of a bound at lambda: the supports' own slack (relative to the scene) and the rounding of
+  // terms of size reach |v + lambda n| + |lambda c| (relative to their size, so far from the origin).
+  auto bound_margin = [&](double lambda) {
+    const double l = std::abs(lambda);
+    return margin + kSupportRoundingRelative * (reach * (1 + l) + l * std::abs(c));
+  };
   for (const Support& h : sets)
-    if (h(n) < c - margin || -h(-n) > c + margin) return {};  // a set lies on one side of the plane
+    if (h(n) < c - bound_margin(1) || -h(-n) > c + bound_margin(1)) return {};  // a set lies on one side
   Vec3 e1, e2;
   plane_frame(n, &e1, &e2);
   const Vec3 origin = c * n;
@@ -176,11 +192,12 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
       const Vec3 v = cs * e1 + sn * e2;
       auto f = [&](double lambda) { return h(v + lambda * n) - lambda * c; };
       if (in_plane) {  // h(v + lambda n) − lambda c does not depend on lambda: no search
-        clip_poly(poly, cs, sn, f(0) + margin * (1 + std::abs(f(0))));
+        clip_poly(poly, cs, sn, f(0) + bound_margin(0));
         continue;
       }
-      const double best = minimize_over_lambda(f, &guess, margin);  // within a margin of the least bound
-      clip_poly(poly, cs, sn, best + margin * (1 + std::abs(best)));
+      // Any lambda gives a sound bound: the least found, at lambda = guess, within a margin of the least.
+      const double best = minimize_over_lambda(f, &guess, margin);
+      clip_poly(poly, cs, sn, best + bound_margin(guess));
     }
   }
   if (cuts)
@@ -189,11 +206,12 @@ Points2 support_section(const ReachedSet::Impl& g, int fi, const std::vector<Sup
       // w . (origin + x e1 + y e2) <= c in the plane's frame
       const double a = hs.normal.dot(e1), b = hs.normal.dot(e2), rhs = hs.offset - hs.normal.dot(origin);
       const double len = std::hypot(a, b);
+      const double rounding = kSupportRoundingRelative * (reach + std::abs(hs.offset));
       if (len <= 1e-12) {  // w along n: the whole plane lies on one side
-        if (rhs < -margin) return {};
+        if (rhs < -margin - rounding) return {};
         continue;
       }
-      clip_poly(poly, a / len, b / len, rhs / len + margin);
+      clip_poly(poly, a / len, b / len, (rhs + rounding) / len + margin);
     }
   if (poly.empty()) return {};
   const FaceChart& chart = g.charts[fi];

@@ -1,7 +1,10 @@
 #include "experiments/cli/verify_command.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -14,6 +17,7 @@
 #include "experiments/validation/verifier_model.h"
 #include "experiments/validation/verify_json.h"
 #include "models/input_error.h"
+#include "verifier/reached_set.h"
 
 namespace cmt {
 // The verification in a forked child under the wall-clock limit (experiments/common/verifier_budget.h: the
@@ -54,6 +58,26 @@ nlohmann::json verify_json_within_time_limit(const LoadedTask& task, const Strat
 }
 
 namespace {
+
+// Units in the last place of the task's world coordinates that one cell of the region grid must span for the
+// verifier to resolve positions as it does near the origin (docs/verifier.md "Invariance": precision far from
+// the origin). Below it the sets stay sound (every rounding is outward) but may be looser.
+constexpr double kRegionCellMinUlps = 16;
+
+// A note on stderr when the task lies so far from the world origin that its coordinates' resolution nears
+// the region grid's cell.
+void note_far_from_origin(const LoadedTask& task) {
+  double reach = 0;
+  for (const Vertex& v : task.cspace.vertices()) reach = std::max(reach, v.point.cwiseAbs().maxCoeff());
+  const double ulp = std::nextafter(reach, std::numeric_limits<double>::infinity()) - reach;
+  const double cell = region_cell(task.cspace.scale());
+  if (reach > 0 && cell < kRegionCellMinUlps * ulp)
+    std::cerr << "note: " << task.task.name << " lies " << reach / task.cspace.scale()
+              << " scene scales from the world origin, where a region cell (" << cell << ") spans "
+              << cell / ulp << " units in the last place of its coordinates (fewer than "
+              << kRegionCellMinUlps << "): the verdict is sound but may be looser than near the origin; "
+              << "translate the task nearer the origin for the tightest sets\n";
+}
 
 // The EDR verdict's JSON (edr_verdict.h) computed in a forked child under the wall-clock limit, with
 // `reliable` and `timed_out`; bad input found there (a slice the loader rejects) comes back as InputError.
@@ -162,6 +186,7 @@ void run_verify(const VerifyCli& cli, CommandState& state) {
   } else {
     throw CLI::ValidationError("verify", "give --strategy NAME or --motion NAME");
   }
+  note_far_from_origin(*task);
   const VerifyOptions verify_options{cli.spring_model,
                                      cli.stop_relative_speed,
                                      cli.contact_lift >= 0 ? cli.contact_lift : rollout_contact_lift(*task),

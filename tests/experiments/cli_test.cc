@@ -18,6 +18,7 @@ namespace {
 
 using cmt::test::Result;
 using cmt::test::run;
+using cmt::test::run_stderr;
 using cmt::test::task;
 
 TEST(CmtInfo, CubeHasBuckleyCounts) {
@@ -305,6 +306,29 @@ TEST(CmtVerify, PerfectSensingAnswersWithinTheTimeLimit) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["timed_out"], false);
   EXPECT_EQ(j["reliable"], true);
+}
+
+// A task so far from the world origin that a region cell spans few units in the last place of its
+// coordinates gets a note on stderr; the same task near the origin gets none. Both verify reliable: a damper
+// pressed straight into a floor sticks where it lands.
+TEST(CmtVerify, NotesATaskTooFarFromTheOriginForTheRegionGrid) {
+  auto write = [](const std::string& name, double x0) {
+    const std::string path = testing::TempDir() + "/" + name + ".yaml";
+    const std::string a = std::to_string(x0), b = std::to_string(x0 + 4), c = std::to_string(x0 + 2);
+    std::ofstream(path) << "name: " << name << "\nunits: in\nfriction: 0.5\n"
+                        << "uncertainty: {eps_s: 0.05, eps_p: 0.05, theta_v: 0.1, theta_f: 0.05}\n"
+                        << "cspace: []\nbounds: {min: [" << a << ", 0, 0], max: [" << b << ", 4, 2]}\n"
+                        << "start: {point: [" << c << ", 2, 0]}\n"
+                        << "goal: {polygon: [[" << a << ", 0, 0], [" << b << ", 0, 0], [" << b << ", 4, 0], ["
+                        << a << ", 4, 0]]}\nmotions: {down: {damper: [0, 0, -1]}}\nstrategies: {s: [down]}\n";
+    return path;
+  };
+  const Result far = run_stderr("verify " + write("far_floor", 5e5) + " --strategy s");
+  EXPECT_EQ(far.status, 0) << far.out;
+  EXPECT_NE(far.out.find("scene scales from the world origin"), std::string::npos) << far.out;
+  const Result near = run_stderr("verify " + write("near_floor", 0) + " --strategy s");
+  EXPECT_EQ(near.status, 0) << near.out;
+  EXPECT_EQ(near.out.find("note:"), std::string::npos) << near.out;
 }
 
 // The verifier's model options on the cube's sticking motion (docs/verifier.md), each echoed in the JSON. By

@@ -1,4 +1,5 @@
-// Runs the built cmt program for end-to-end tests: its exit status and stdout (stderr is discarded).
+// Runs the built cmt program for end-to-end tests: its exit status and stdout (stderr is discarded), or its
+// stderr.
 #pragma once
 
 #include <sys/wait.h>
@@ -16,6 +17,19 @@ struct Result {
 
 inline Result run(const std::string& args) {
   const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+// Its exit status and stderr (stdout is discarded).
+inline Result run_stderr(const std::string& args) {
+  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>&1 >/dev/null";
   Result r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
