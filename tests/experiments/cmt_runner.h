@@ -15,8 +15,8 @@ struct Result {
   std::string out;
 };
 
-inline Result run(const std::string& args) {
-  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>/dev/null";
+// Runs a shell command line and collects what it writes to the pipe.
+inline Result run_shell(const std::string& cmd) {
   Result r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -27,17 +27,13 @@ inline Result run(const std::string& args) {
   return r;
 }
 
+inline Result run(const std::string& args) {
+  return run_shell(std::string(CMT_BINARY) + " " + args + " 2>/dev/null");
+}
+
 // Its exit status and stderr (stdout is discarded).
 inline Result run_stderr(const std::string& args) {
-  const std::string cmd = std::string(CMT_BINARY) + " " + args + " 2>&1 >/dev/null";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
+  return run_shell(std::string(CMT_BINARY) + " " + args + " 2>&1 >/dev/null");
 }
 
 // A built-in task file.
